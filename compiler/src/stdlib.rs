@@ -1,0 +1,13 @@
+//! The standard library's sources, embedded at build time so that `#include <name.sl>` works without
+//! any installed files.
+
+/// The directory name standard-library files are shown under in diagnostics.
+pub const PREFIX: &str = "<stdlib>";
+
+/// Every module: its file name and its source.
+pub const MODULES: &[(&str, &str)] = &[("pattern.sl", include_str!("../../stdlib/pattern.sl"))];
+
+/// The source of the standard-library module `name` (e.g. `"pattern.sl"`).
+pub fn source(name: &str) -> Option<&'static str> {
+    MODULES.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+}

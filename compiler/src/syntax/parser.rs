@@ -1,0 +1,346 @@
+//! The parser driver: runs the LALRPOP grammar over preprocessed tokens and turns its errors into
+//! diagnostics. [`Ctx`] is what the grammar's actions see: spans, literal values, and a place to
+//! report problems that do not stop the parse.
+
+use std::cell::RefCell;
+
+use lalrpop_util::{ErrorRecovery, ParseError};
+use smol_str::SmolStr;
+
+use super::ast::*;
+use super::lexer::{Token, unescape};
+use super::token::{NumberClass, TokenKind, classify_number, int_value};
+use super::{delimiters, errors};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::source::{SourceMap, Span};
+
+lalrpop_util::lalrpop_mod!(
+    #[allow(clippy::all, clippy::pedantic, unused_parens, unused_imports, missing_docs)]
+    grammar,
+    "/syntax/grammar.rs"
+);
+
+/// The grammar's error type: actions never fail (they report through [`Ctx`] instead).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Never {}
+
+/// A syntax error the grammar recovered from.
+pub type Recovered = ErrorRecovery<usize, TokenKind, Never>;
+
+/// A qualifier keyword and the index of its token.
+pub enum Qualifier {
+    /// A storage class or rate.
+    Rate(RateQualifier, usize),
+    /// `perlight`.
+    Perlight(usize),
+    /// `output`.
+    Output(usize),
+    /// `extern`.
+    Extern(usize),
+}
+
+/// One entry of a parameter list, before the types of continued declarators are filled in.
+pub enum ParamItem {
+    /// `[qualifiers] type declarator`.
+    Typed(Qualifiers, TypeSpec, Declarator),
+    /// `declarator`, taking the type of the entry before.
+    Continued(Declarator),
+}
+
+/// The header of a statement that takes a body: `while`, `for`, `illuminance`, ...
+pub enum LoopHead {
+    /// `while (cond)`.
+    While(Expr),
+    /// `for (init; cond; step)`.
+    For(Option<Stmt>, Option<Expr>, Option<Expr>),
+    /// `illuminance(args)`.
+    Illuminance(Vec<Expr>),
+    /// `illuminate(args)`.
+    Illuminate(Vec<Expr>),
+    /// `solar(args)`.
+    Solar(Vec<Expr>),
+}
+
+/// What the grammar's actions work with.
+pub struct Ctx<'a> {
+    tokens: &'a [Token],
+    sources: &'a SourceMap,
+    reported: RefCell<Vec<Diagnostic>>,
+    recovered: RefCell<Vec<Recovered>>,
+}
+
+impl Ctx<'_> {
+    /// The span from token `l` up to (not including) token `r`.
+    pub fn span(&self, l: usize, r: usize) -> Span {
+        match (self.tokens.get(l), r.checked_sub(1).and_then(|last| self.tokens.get(last))) {
+            (Some(first), Some(last)) if r > l => self.sources.join(first.span, last.span),
+            (Some(first), _) => Span { end: first.span.start, ..first.span },
+            (None, _) => self.tokens.last().map(|t| t.span.end_point()).unwrap_or_default(),
+        }
+    }
+
+    fn text(&self, i: usize) -> &str {
+        self.sources.text(self.tokens[i].span)
+    }
+
+    /// Reports a problem found by an action.
+    pub fn report(&self, d: Diagnostic) {
+        self.reported.borrow_mut().push(d);
+    }
+
+    /// Records a syntax error the grammar recovered from.
+    pub fn recover(&self, e: Recovered) {
+        self.recovered.borrow_mut().push(e);
+    }
+
+    /// The identifier at token `i`.
+    pub fn ident(&self, i: usize) -> Ident {
+        Ident { name: SmolStr::new(self.text(i)), span: self.tokens[i].span }
+    }
+
+    /// An expression node from token `l` to `r`.
+    pub fn expr(&self, l: usize, r: usize, kind: ExprKind) -> Expr {
+        Expr { kind, span: self.span(l, r) }
+    }
+
+    /// A binary operation.
+    pub fn binary(&self, l: usize, r: usize, op: BinaryOp, lhs: Expr, rhs: Expr) -> Expr {
+        self.expr(l, r, ExprKind::Binary { op, lhs: Box::new(lhs), rhs: Box::new(rhs) })
+    }
+
+    /// A statement node from token `l` to `r`.
+    pub fn stmt(&self, l: usize, r: usize, kind: StmtKind) -> Stmt {
+        Stmt { kind, span: self.span(l, r) }
+    }
+
+    /// A statement made of a loop header and its body.
+    pub fn looped(&self, l: usize, r: usize, head: LoopHead, body: Stmt) -> Stmt {
+        let body = Box::new(body);
+        let kind = match head {
+            LoopHead::While(cond) => StmtKind::While { cond, body },
+            LoopHead::For(init, cond, step) => StmtKind::For { init: init.map(Box::new), cond, step, body },
+            LoopHead::Illuminance(args) => StmtKind::Illuminance { args, body },
+            LoopHead::Illuminate(args) => StmtKind::Illuminate { args, body },
+            LoopHead::Solar(args) => StmtKind::Solar { args, body },
+        };
+        self.stmt(l, r, kind)
+    }
+
+    /// The integer literal at token `i`. Malformed literals were reported by the lexer and read as 0.
+    pub fn int(&self, i: usize) -> ExprKind {
+        let text = self.text(i);
+        if classify_number(text) != NumberClass::Int {
+            return ExprKind::Int { value: 0, unsigned: false };
+        }
+        let unsigned = text.ends_with(['u', 'U']);
+        let value = int_value(text).and_then(|v| u32::try_from(v).ok());
+        match value {
+            Some(value) => ExprKind::Int { value, unsigned },
+            None => {
+                self.report(
+                    Diagnostic::error(
+                        Code::IntegerTooLarge,
+                        format!("integer literal `{text}` does not fit in 32 bits"),
+                        self.tokens[i].span,
+                        "the largest is 4294967295 (0xffffffff)",
+                    )
+                    .with_help("write it as a float literal if a float is meant, e.g. `1e10`"),
+                );
+                ExprKind::Int { value: 0, unsigned }
+            }
+        }
+    }
+
+    /// The float literal at token `i`.
+    pub fn float(&self, i: usize) -> ExprKind {
+        let text = self.text(i);
+        let digits = text.strip_suffix(['f', 'F']).unwrap_or(text);
+        let value: f64 = digits.parse().unwrap_or(0.0);
+        if value.is_finite() && value.abs() > f64::from(f32::MAX) || value.is_infinite() {
+            self.report(
+                Diagnostic::error(
+                    Code::FloatTooLarge,
+                    format!("float literal `{text}` is too large for f32"),
+                    self.tokens[i].span,
+                    "it would round to infinity",
+                )
+                .with_note("the largest finite f32 is about 3.4028235e38"),
+            );
+        }
+        ExprKind::Float(value)
+    }
+
+    /// The value of the string literal at token `i`, with its span.
+    pub fn string_value(&self, i: usize) -> (String, Span) {
+        (unescape(self.text(i)), self.tokens[i].span)
+    }
+
+    /// The level of `break n` / `continue n`.
+    pub fn loop_level(&self, i: usize) -> u32 {
+        match self.int(i) {
+            ExprKind::Int { value, .. } if value > 0 => value,
+            _ => {
+                self.report(Diagnostic::error(
+                    Code::InvalidLoopLevel,
+                    "the loop level of `break` or `continue` must be at least 1",
+                    self.tokens[i].span,
+                    "counts the enclosing loops to leave; 1 is the innermost",
+                ));
+                1
+            }
+        }
+    }
+
+    /// A braced constructor `{...}`; an empty one is reported.
+    pub fn braced(&self, l: usize, r: usize, items: Vec<Expr>) -> Expr {
+        let e = self.expr(l, r, ExprKind::Braced(items));
+        if let ExprKind::Braced(items) = &e.kind
+            && items.is_empty()
+        {
+            self.report(
+                Diagnostic::error(
+                    Code::EmptyConstructor,
+                    "empty vector constructor",
+                    e.span,
+                    "no components",
+                )
+                .with_help("write the components, e.g. `{0, 0, 0, 1}`"),
+            );
+        }
+        e
+    }
+
+    /// The size in `name[size]`, which must be a positive integer literal (after macro expansion).
+    pub fn array_size(&self, e: Expr, span: Span) -> ArraySize {
+        match e.kind {
+            ExprKind::Int { value, .. } if value > 0 => ArraySize { len: Some(value), span },
+            _ => {
+                self.report(
+                    Diagnostic::error(
+                        Code::InvalidArraySize,
+                        "array size must be a positive integer literal",
+                        e.span,
+                        "not a positive integer literal",
+                    )
+                    .with_help("use a number or a `#define`d constant, e.g. `float table[16]`"),
+                );
+                ArraySize { len: None, span }
+            }
+        }
+    }
+
+    /// Folds a qualifier list, reporting contradictions and repeats.
+    pub fn qualifiers(&self, list: Vec<Qualifier>) -> Qualifiers {
+        let mut q = Qualifiers::default();
+        for item in list {
+            let (slot, span, what): (&mut Option<Span>, Span, String) = match item {
+                Qualifier::Rate(rate, i) => {
+                    let span = self.span(i, i + 1);
+                    if let Some((previous, previous_span)) = q.rate {
+                        let message = if previous == rate {
+                            format!("`{}` is written twice", rate.keyword())
+                        } else {
+                            format!(
+                                "conflicting qualifiers `{}` and `{}`",
+                                previous.keyword(),
+                                rate.keyword()
+                            )
+                        };
+                        self.report(
+                            Diagnostic::error(Code::ConflictingQualifiers, message, span, "")
+                                .with_label(previous_span, "the first qualifier")
+                                .with_help("a declaration has at most one storage class or rate"),
+                        );
+                    } else {
+                        q.rate = Some((rate, span));
+                    }
+                    continue;
+                }
+                Qualifier::Perlight(i) => (&mut q.perlight, self.span(i, i + 1), "perlight".into()),
+                Qualifier::Output(i) => (&mut q.output, self.span(i, i + 1), "output".into()),
+                Qualifier::Extern(i) => (&mut q.extern_, self.span(i, i + 1), "extern".into()),
+            };
+            match slot {
+                Some(previous) => self.report(
+                    Diagnostic::error(
+                        Code::ConflictingQualifiers,
+                        format!("`{what}` is written twice"),
+                        span,
+                        "",
+                    )
+                    .with_label(*previous, "first written here"),
+                ),
+                None => *slot = Some(span),
+            }
+        }
+        q
+    }
+
+    /// Resolves a parameter list: each continued declarator takes the type of the one before it,
+    /// but only across `,` (after `;` a new group must name its type).
+    pub fn params(&self, items: Vec<(Option<bool>, ParamItem)>) -> Vec<Param> {
+        let mut params: Vec<Param> = Vec::with_capacity(items.len());
+        let mut head: Option<(Qualifiers, TypeSpec)> = None;
+        for (separator, item) in items {
+            let after_semicolon = separator == Some(true);
+            let (qualifiers, ty, d) = match item {
+                ParamItem::Typed(q, t, d) => {
+                    head = Some((q, t));
+                    (q, t, d)
+                }
+                ParamItem::Continued(d) => match head {
+                    Some((q, t)) if !after_semicolon => (q, t, d),
+                    _ => {
+                        self.report(
+                            Diagnostic::error(
+                                Code::UnexpectedToken,
+                                format!("parameter `{}` has no type", d.name.name),
+                                d.name.span,
+                                "expected a type before this name",
+                            )
+                            .with_help(format!("write its type, e.g. `float {}`", d.name.name)),
+                        );
+                        head = None;
+                        continue;
+                    }
+                },
+            };
+            params.push(Param {
+                qualifiers,
+                ty,
+                name: d.name,
+                array: d.array,
+                default: d.init,
+                span: d.span,
+            });
+        }
+        params
+    }
+}
+
+/// Parses preprocessed tokens into a module, reporting every independent syntax error.
+pub fn parse(tokens: &[Token], sources: &SourceMap, diags: &mut Diagnostics) -> Module {
+    // Unbalanced brackets derail any LR parser into a cascade of errors; report them alone.
+    let delimiter_errors = delimiters::check(tokens);
+    if !delimiter_errors.is_empty() {
+        diags.extend(delimiter_errors);
+        return Module::default();
+    }
+    let ctx = Ctx { tokens, sources, reported: RefCell::default(), recovered: RefCell::default() };
+    let input = tokens.iter().enumerate().map(|(i, t)| Ok::<_, Never>((i, t.kind, i + 1)));
+    let result = grammar::ModuleParser::new().parse(&ctx, input);
+    let mut syntax_errors: Vec<ParseError<usize, TokenKind, Never>> =
+        ctx.recovered.take().into_iter().map(|r| r.error).collect();
+    let module = match result {
+        Ok(module) => module,
+        Err(e) => {
+            syntax_errors.push(e);
+            Module::default()
+        }
+    };
+    for e in syntax_errors {
+        diags.push(errors::to_diagnostic(&e, tokens, sources));
+    }
+    diags.extend(ctx.reported.take());
+    module
+}

@@ -1,0 +1,564 @@
+//! The preprocessor: `#define`, `#undef`, `#include`, conditional compilation, `#error`, `#pragma once`.
+//!
+//! RenderMan shaders are written for cpp, so Patina runs one — on tokens, not text, so that every
+//! token it passes on keeps a span in the file (or macro body) it was written in. Each inclusion of a
+//! file is a new [`FileId`] whose `included_from` is the directive, and each macro expansion is an
+//! [`ExpnId`](crate::source::ExpnId); diagnostics follow both back to the user's own lines.
+
+mod condition;
+mod expand;
+mod loader;
+
+pub use expand::Macro;
+pub use loader::{FsLoader, LoadError, Loaded, MemoryLoader, SourceLoader, read_source_file};
+
+use rustc_hash::{FxHashMap, FxHashSet};
+use smol_str::SmolStr;
+
+use crate::diag::{Code, Diagnostic, Diagnostics, Severity};
+use crate::source::{FileId, SourceMap, Span};
+use crate::syntax::lexer::{Token, lex, unescape};
+use crate::syntax::token::TokenKind;
+use expand::Expander;
+
+/// Includes nested deeper than this are an error (a file that includes itself gets here fast).
+pub const MAX_INCLUDE_DEPTH: usize = 64;
+
+/// One `#if` ... `#endif` in progress.
+struct Conditional {
+    /// The `#if`, `#ifdef` or `#ifndef` directive.
+    opened: Span,
+    /// The `#else`, once seen.
+    else_seen: Option<Span>,
+    /// Whether the enclosing text is being compiled.
+    parent_active: bool,
+    /// Whether the current branch is being compiled.
+    taking: bool,
+    /// Whether some branch has been compiled already.
+    taken: bool,
+}
+
+/// Runs the preprocessor over `root` and everything it includes; returns the tokens the parser
+/// reads (no line breaks, no directives).
+pub fn preprocess(
+    sources: &mut SourceMap,
+    root: FileId,
+    loader: &dyn SourceLoader,
+    diags: &mut Diagnostics,
+) -> Vec<Token> {
+    let mut pp = Preprocessor {
+        sources,
+        loader,
+        diags,
+        macros: FxHashMap::default(),
+        once: FxHashSet::default(),
+        out: Vec::new(),
+        produced: 0,
+    };
+    pp.run_file(root, 0);
+    pp.out
+}
+
+struct Preprocessor<'a> {
+    sources: &'a mut SourceMap,
+    loader: &'a dyn SourceLoader,
+    diags: &'a mut Diagnostics,
+    macros: FxHashMap<SmolStr, Macro>,
+    once: FxHashSet<String>,
+    out: Vec<Token>,
+    produced: usize,
+}
+
+fn active(conds: &[Conditional]) -> bool {
+    conds.last().is_none_or(|c| c.parent_active && c.taking)
+}
+
+impl Preprocessor<'_> {
+    fn text(&self, t: Token) -> &str {
+        self.sources.text(t.span)
+    }
+
+    fn expander(&mut self) -> Expander<'_> {
+        Expander {
+            macros: &self.macros,
+            sources: self.sources,
+            diags: self.diags,
+            produced: &mut self.produced,
+        }
+    }
+
+    fn run_file(&mut self, file: FileId, depth: usize) {
+        let text = self.sources.file(file).text.clone();
+        let tokens = lex(file, &text, self.diags);
+        let mut conds: Vec<Conditional> = Vec::new();
+        let mut run: Vec<Token> = Vec::new();
+        let mut i = 0;
+        while i < tokens.len() {
+            let t = tokens[i];
+            if t.kind == TokenKind::Hash && t.line_start {
+                let end = tokens[i..]
+                    .iter()
+                    .position(|t| t.kind == TokenKind::Newline)
+                    .map_or(tokens.len(), |n| i + n);
+                self.flush(&mut run);
+                self.directive(t, &tokens[i + 1..end], &mut conds, file, depth);
+                i = end;
+                continue;
+            }
+            if t.kind != TokenKind::Newline && active(&conds) {
+                run.push(t);
+            }
+            i += 1;
+        }
+        self.flush(&mut run);
+        for c in conds.into_iter().rev() {
+            self.diags.push(
+                Diagnostic::error(
+                    Code::UnterminatedConditional,
+                    "unterminated conditional",
+                    c.opened,
+                    "this is never closed",
+                )
+                .with_help("add `#endif` before the end of the file"),
+            );
+        }
+    }
+
+    fn flush(&mut self, run: &mut Vec<Token>) {
+        if run.is_empty() {
+            return;
+        }
+        let input = std::mem::take(run);
+        let mut out = std::mem::take(&mut self.out);
+        self.expander().expand(input, &[], &mut out);
+        self.out = out;
+    }
+
+    fn directive(
+        &mut self,
+        hash: Token,
+        line: &[Token],
+        conds: &mut Vec<Conditional>,
+        file: FileId,
+        depth: usize,
+    ) {
+        let Some(&name_tok) = line.first() else { return }; // `#` alone is the null directive
+        let span = self.sources.join(hash.span, line.last().map_or(hash.span, |t| t.span));
+        let name = self.text(name_tok).to_string();
+        let rest = &line[1..];
+        match name.as_str() {
+            "if" => {
+                let parent_active = active(conds);
+                let taking = parent_active && self.condition(name_tok, rest);
+                conds.push(Conditional { opened: span, else_seen: None, parent_active, taking, taken: taking });
+            }
+            "ifdef" | "ifndef" => {
+                let parent_active = active(conds);
+                let mut taking = false;
+                if parent_active {
+                    match self.macro_name(name_tok, rest, &name) {
+                        Some(macro_name) => {
+                            taking = self.macros.contains_key(self.text(macro_name)) == (name == "ifdef");
+                            self.no_extra_tokens(&name, &rest[1..]);
+                        }
+                        None => taking = false,
+                    }
+                }
+                conds.push(Conditional { opened: span, else_seen: None, parent_active, taking, taken: taking });
+            }
+            "elif" | "else" => {
+                let Some(c) = conds.last() else {
+                    self.unmatched(&name, span);
+                    return;
+                };
+                if let Some(else_span) = c.else_seen {
+                    self.diags.push(
+                        Diagnostic::error(
+                            Code::ConditionalAfterElse,
+                            format!("`#{name}` after `#else`"),
+                            span,
+                            format!("this `#{name}` can never be reached"),
+                        )
+                        .with_label(else_span, "the `#else` is here"),
+                    );
+                    return;
+                }
+                let (parent_active, taken) = (c.parent_active, c.taken);
+                let taking = if name == "else" {
+                    self.no_extra_tokens(&name, rest);
+                    parent_active && !taken
+                } else {
+                    parent_active && !taken && self.condition(name_tok, rest)
+                };
+                let c = conds.last_mut().expect("checked above");
+                c.taking = taking;
+                c.taken |= taking;
+                if name == "else" {
+                    c.else_seen = Some(span);
+                }
+            }
+            "endif" => {
+                if conds.pop().is_none() {
+                    self.unmatched(&name, span);
+                } else {
+                    self.no_extra_tokens(&name, rest);
+                }
+            }
+            _ if !active(conds) => {}
+            "define" => self.define(name_tok, rest),
+            "undef" => {
+                if let Some(macro_name) = self.macro_name(name_tok, rest, &name) {
+                    let key = self.text(macro_name).to_string();
+                    self.macros.remove(key.as_str());
+                    self.no_extra_tokens(&name, &rest[1..]);
+                }
+            }
+            "include" => self.include(span, rest, file, depth),
+            "pragma" => {
+                if rest.first().is_some_and(|t| self.text(*t) == "once") {
+                    let name = self.sources.file(file).name.clone();
+                    self.once.insert(name);
+                }
+                // Other pragmas are for other compilers; C ignores unknown pragmas and so do we.
+            }
+            "error" | "warning" => {
+                let message = match (rest.first(), rest.last()) {
+                    (Some(first), Some(last)) => {
+                        let whole = self.sources.join(first.span, last.span);
+                        self.sources.text(whole).to_string()
+                    }
+                    _ => String::new(),
+                };
+                let mut d = Diagnostic::error(Code::ErrorDirective, format!("#{name}: {message}"), span, "");
+                if name == "warning" {
+                    d.severity = Severity::Warning;
+                }
+                self.diags.push(d);
+            }
+            _ => self.diags.push(
+                Diagnostic::error(
+                    Code::UnknownDirective,
+                    format!("unknown directive `#{name}`"),
+                    name_tok.span,
+                    "not a preprocessor directive",
+                )
+                .with_help(
+                    "the directives are #define #undef #include #if #ifdef #ifndef #elif #else #endif #error #warning #pragma",
+                ),
+            ),
+        }
+    }
+
+    fn unmatched(&mut self, name: &str, span: Span) {
+        self.diags.push(Diagnostic::error(
+            Code::UnmatchedConditional,
+            format!("`#{name}` without `#if`"),
+            span,
+            "no `#if`, `#ifdef` or `#ifndef` is open here",
+        ));
+    }
+
+    fn no_extra_tokens(&mut self, name: &str, rest: &[Token]) {
+        if let (Some(first), Some(last)) = (rest.first(), rest.last()) {
+            let span = self.sources.join(first.span, last.span);
+            self.diags.push(
+                Diagnostic::warning(
+                    Code::ExtraTokens,
+                    format!("extra tokens after `#{name}`"),
+                    span,
+                    "these are ignored",
+                )
+                .with_help("write a comment with `//` or `/* */`"),
+            );
+        }
+    }
+
+    /// The identifier a `#define`, `#undef`, `#ifdef` or `#ifndef` names.
+    fn macro_name(&mut self, directive: Token, rest: &[Token], name: &str) -> Option<Token> {
+        match rest.first() {
+            Some(t) if t.kind == TokenKind::Ident => Some(*t),
+            Some(t) => {
+                let found = t.kind.describe();
+                self.diags.push(Diagnostic::error(
+                    Code::MissingMacroName,
+                    format!("expected a macro name after `#{name}`, found {found}"),
+                    t.span,
+                    "macro names are identifiers",
+                ));
+                None
+            }
+            None => {
+                self.diags.push(Diagnostic::error(
+                    Code::MissingMacroName,
+                    format!("`#{name}` needs a macro name"),
+                    directive.span,
+                    "no name follows",
+                ));
+                None
+            }
+        }
+    }
+
+    /// Evaluates an `#if`/`#elif` operand; an invalid one is reported and counts as false.
+    fn condition(&mut self, directive: Token, rest: &[Token]) -> bool {
+        let end = rest.last().map_or(directive.span, |t| t.span).end_point();
+        let mut resolved = Vec::with_capacity(rest.len());
+        let mut i = 0;
+        while i < rest.len() {
+            let t = rest[i];
+            if t.kind == TokenKind::Ident && self.text(t) == "defined" {
+                let (operand, consumed) = match (rest.get(i + 1), rest.get(i + 2), rest.get(i + 3)) {
+                    (Some(open), Some(name), Some(close))
+                        if open.kind == TokenKind::LParen
+                            && name.kind == TokenKind::Ident
+                            && close.kind == TokenKind::RParen =>
+                    {
+                        (Some(*name), 4)
+                    }
+                    (Some(name), _, _) if name.kind == TokenKind::Ident => (Some(*name), 2),
+                    _ => (None, 1),
+                };
+                let Some(operand) = operand else {
+                    self.diags.push(Diagnostic::error(
+                        Code::InvalidConditionExpr,
+                        "`defined` needs a macro name",
+                        t.span,
+                        "write `defined NAME` or `defined(NAME)`",
+                    ));
+                    return false;
+                };
+                let is_defined = self.macros.contains_key(self.text(operand));
+                let kind = if is_defined { TokenKind::True } else { TokenKind::False };
+                resolved.push(Token { kind, ..t });
+                i += consumed;
+                continue;
+            }
+            resolved.push(t);
+            i += 1;
+        }
+        let mut expanded = Vec::new();
+        self.expander().expand(resolved, &[], &mut expanded);
+        match condition::evaluate(&expanded, self.sources, end) {
+            Ok(value) => value != 0,
+            Err(e) => {
+                let code = Code::InvalidConditionExpr;
+                let label = if rest.is_empty() { "no condition follows" } else { "" };
+                let span = if rest.is_empty() { directive.span } else { e.span };
+                self.diags.push(
+                    Diagnostic::error(
+                        code,
+                        format!("invalid preprocessor condition: {}", e.message),
+                        span,
+                        label,
+                    )
+                    .with_note("conditions are integer constant expressions; undefined names count as 0"),
+                );
+                false
+            }
+        }
+    }
+
+    fn define(&mut self, directive: Token, rest: &[Token]) {
+        let Some(name_tok) = self.macro_name(directive, rest, "define") else { return };
+        let name = SmolStr::new(self.text(name_tok));
+        let mut body_start = 1;
+        let mut params = None;
+        if let Some(open) = rest.get(1).filter(|t| t.kind == TokenKind::LParen && !t.space_before) {
+            match self.macro_params(*open, &rest[2..]) {
+                Some((list, consumed)) => {
+                    params = Some(list);
+                    body_start = 2 + consumed;
+                }
+                None => return,
+            }
+        }
+        let body = rest[body_start..].to_vec();
+        if let Some(list) = &params
+            && !self.check_body(&body, list)
+        {
+            return;
+        }
+        if body.first().is_some_and(|t| t.kind == TokenKind::HashHash)
+            || body.last().is_some_and(|t| t.kind == TokenKind::HashHash)
+        {
+            let at = if body[0].kind == TokenKind::HashHash { body[0] } else { body[body.len() - 1] };
+            self.diags.push(Diagnostic::error(
+                Code::InvalidPaste,
+                "`##` cannot begin or end a macro body",
+                at.span,
+                "nothing to paste on this side",
+            ));
+            return;
+        }
+        let new = Macro { name_span: name_tok.span, params, body };
+        if let Some(old) = self.macros.get(&name)
+            && !self.same_definition(old, &new)
+        {
+            self.diags.push(
+                Diagnostic::warning(
+                    Code::MacroRedefined,
+                    format!("macro `{name}` redefined"),
+                    name_tok.span,
+                    "the new definition differs",
+                )
+                .with_label(old.name_span, "the previous definition"),
+            );
+        }
+        self.macros.insert(name, new);
+    }
+
+    /// Parses `a, b, c)` after the `(` of a function-like macro; returns the names and how many
+    /// tokens were used.
+    fn macro_params(&mut self, open: Token, tokens: &[Token]) -> Option<(Vec<SmolStr>, usize)> {
+        let mut params: Vec<SmolStr> = Vec::new();
+        let mut spans: Vec<Span> = Vec::new();
+        let mut i = 0;
+        let malformed = |pp: &mut Self, span: Span, label: &str| {
+            pp.diags.push(
+                Diagnostic::error(Code::MalformedMacroParams, "malformed macro parameter list", span, label)
+                    .with_label(open.span, "the parameter list starts here")
+                    .with_help("write `#define NAME(a, b) ...` with distinct identifiers"),
+            );
+        };
+        if tokens.first().is_some_and(|t| t.kind == TokenKind::RParen) {
+            return Some((params, 1));
+        }
+        loop {
+            match tokens.get(i) {
+                Some(t) if t.kind == TokenKind::Ident => {
+                    let name = SmolStr::new(self.text(*t));
+                    if let Some(first) = params.iter().position(|p| *p == name) {
+                        self.diags.push(
+                            Diagnostic::error(
+                                Code::MalformedMacroParams,
+                                format!("duplicate macro parameter `{name}`"),
+                                t.span,
+                                "used again here",
+                            )
+                            .with_label(spans[first], "first used here"),
+                        );
+                        return None;
+                    }
+                    params.push(name);
+                    spans.push(t.span);
+                }
+                Some(t) => {
+                    malformed(self, t.span, "expected a parameter name");
+                    return None;
+                }
+                None => {
+                    malformed(self, open.span, "the list is never closed");
+                    return None;
+                }
+            }
+            i += 1;
+            match tokens.get(i) {
+                Some(t) if t.kind == TokenKind::Comma => i += 1,
+                Some(t) if t.kind == TokenKind::RParen => return Some((params, i + 1)),
+                Some(t) => {
+                    malformed(self, t.span, "expected `,` or `)`");
+                    return None;
+                }
+                None => {
+                    malformed(self, open.span, "the list is never closed");
+                    return None;
+                }
+            }
+        }
+    }
+
+    /// Checks that every `#` in a function-like macro's body is followed by a parameter.
+    fn check_body(&mut self, body: &[Token], params: &[SmolStr]) -> bool {
+        for (i, t) in body.iter().enumerate() {
+            if t.kind != TokenKind::Hash {
+                continue;
+            }
+            let next = body.get(i + 1);
+            if !next.is_some_and(|n| n.kind == TokenKind::Ident && params.iter().any(|p| p == self.text(*n)))
+            {
+                self.diags.push(Diagnostic::error(
+                    Code::InvalidStringize,
+                    "`#` must be followed by a macro parameter",
+                    t.span,
+                    "`#` turns a parameter into a string",
+                ));
+                return false;
+            }
+        }
+        true
+    }
+
+    fn same_definition(&self, a: &Macro, b: &Macro) -> bool {
+        a.params == b.params
+            && a.body.len() == b.body.len()
+            && a.body.iter().zip(&b.body).enumerate().all(|(i, (x, y))| {
+                x.kind == y.kind
+                    && self.text(*x) == self.text(*y)
+                    && (i == 0 || x.space_before == y.space_before)
+            })
+    }
+
+    fn include(&mut self, span: Span, rest: &[Token], file: FileId, depth: usize) {
+        let (target, quoted) = match rest.first() {
+            Some(t) if t.kind == TokenKind::StringLit => (unescape(self.text(*t)), true),
+            Some(t) if t.kind == TokenKind::Lt => match rest.iter().position(|t| t.kind == TokenKind::Gt) {
+                Some(close) if close > 1 => {
+                    let inner = Span { start: t.span.end, end: rest[close].span.start, ..t.span };
+                    (self.sources.text(inner).trim().to_string(), false)
+                }
+                _ => (String::new(), false),
+            },
+            _ => (String::new(), true),
+        };
+        if target.is_empty() {
+            self.diags.push(
+                Diagnostic::error(
+                    Code::MalformedInclude,
+                    "`#include` needs a file name",
+                    span,
+                    "no file named here",
+                )
+                .with_help("write `#include \"file.sl\"` or `#include <file.sl>`"),
+            );
+            return;
+        }
+        if depth >= MAX_INCLUDE_DEPTH {
+            self.diags.push(
+                Diagnostic::error(
+                    Code::IncludeDepth,
+                    format!("`#include` nested more than {MAX_INCLUDE_DEPTH} deep"),
+                    span,
+                    "included here",
+                )
+                .with_help("a file probably includes itself; guard it with `#pragma once` or `#ifndef`"),
+            );
+            return;
+        }
+        let includer = self.sources.file(file).name.clone();
+        match self.loader.load(&target, quoted, &includer) {
+            Ok(loaded) => {
+                if self.once.contains(&loaded.name) {
+                    return;
+                }
+                let id = self.sources.add_file(loaded.name, loaded.text, Some(span));
+                self.run_file(id, depth + 1);
+            }
+            Err(LoadError::NotFound { searched }) => self.diags.push(
+                Diagnostic::error(
+                    Code::IncludeNotFound,
+                    format!("cannot find `{target}`"),
+                    span,
+                    "included here",
+                )
+                .with_note(format!("searched: {}", searched.join(", ")))
+                .with_help("add the file's directory with `-I DIR`"),
+            ),
+            Err(LoadError::Unreadable { name, reason }) => self.diags.push(Diagnostic::error(
+                Code::IncludeUnreadable,
+                format!("cannot read `{name}`: {reason}"),
+                span,
+                "included here",
+            )),
+        }
+    }
+}

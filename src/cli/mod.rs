@@ -1,0 +1,66 @@
+//! Command-line arguments and the subcommands behind them.
+
+mod check;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// Patina: compile procedural shaders to WGSL and run them on the CPU reference.
+#[derive(Parser, Debug)]
+#[command(name = "patina", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Check shader sources and print their diagnostics.
+    Check(CheckArgs),
+}
+
+/// How diagnostics are printed.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OutputFormat {
+    /// The compiler layout with source snippets (colour on a terminal).
+    Human,
+    /// One JSON object per diagnostic per line.
+    Json,
+}
+
+/// Arguments of `patina check`.
+#[derive(clap::Args, Debug)]
+pub struct CheckArgs {
+    /// The shader files to check.
+    #[arg(required = true)]
+    files: Vec<PathBuf>,
+    /// A directory to search for `#include` files (after the including file's own directory).
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
+    /// How to print diagnostics.
+    #[arg(long, value_enum, default_value_t = OutputFormat::Human)]
+    format: OutputFormat,
+    /// When to colour the output.
+    #[arg(long, value_enum, default_value_t = ColorChoice::Auto)]
+    color: ColorChoice,
+}
+
+/// When to colour diagnostics.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ColorChoice {
+    /// On a terminal only.
+    Auto,
+    /// Always.
+    Always,
+    /// Never.
+    Never,
+}
+
+/// Runs a parsed command line. `Err` is a failure to even start (reported as one line, exit 2).
+pub fn run(cli: Cli) -> Result<ExitCode, String> {
+    match cli.command {
+        Command::Check(args) => check::run(args),
+    }
+}

@@ -5,6 +5,9 @@ use crate::diag::{Code, Diagnostic};
 use crate::syntax::lexer::Token;
 use crate::syntax::token::TokenKind;
 
+/// Brackets nested deeper than this are refused: later stages walk the tree recursively.
+pub const MAX_NESTING: usize = 256;
+
 fn closer_of(open: TokenKind) -> TokenKind {
     match open {
         TokenKind::LParen => TokenKind::RParen,
@@ -23,7 +26,21 @@ pub fn check(tokens: &[Token]) -> Vec<Diagnostic> {
     let mut open: Vec<Token> = Vec::new();
     for &t in tokens {
         match t.kind {
-            TokenKind::LParen | TokenKind::LBracket | TokenKind::LBrace => open.push(t),
+            TokenKind::LParen | TokenKind::LBracket | TokenKind::LBrace => {
+                open.push(t);
+                if open.len() > MAX_NESTING {
+                    diags.push(
+                        Diagnostic::error(
+                            Code::ResourceLimit,
+                            format!("brackets nested more than {MAX_NESTING} deep"),
+                            t.span,
+                            "nesting limit reached here",
+                        )
+                        .with_label(open[0].span, "the outermost bracket"),
+                    );
+                    return diags;
+                }
+            }
             TokenKind::RParen | TokenKind::RBracket | TokenKind::RBrace => match open.last() {
                 Some(&o) if closer_of(o.kind) == t.kind => {
                     open.pop();

@@ -1,5 +1,8 @@
 //! The abstract syntax tree: both surface styles in one set of types, every node with its span.
 //!
+//! Items and large statements are boxed: the parser moves its partial results on every step, so
+//! small nodes keep it fast (see the parse benchmark).
+//!
 //! The tree records what was written, not what it means: `uniform` and `primitive group` stay
 //! distinct, a cast is not yet a conversion, and `^` is not yet cross product or xor. The semantic
 //! stage decides those.
@@ -28,11 +31,11 @@ pub struct Module {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Item {
     /// A shader: `surface plastic(...) {...}` or `surface shader float4 f(...) {...}`.
-    Shader(ShaderDef),
+    Shader(Box<ShaderDef>),
     /// A function.
-    Function(FunctionDef),
+    Function(Box<FunctionDef>),
     /// A global variable declaration (`constant float k = 2;`).
-    Variable(VarDecl),
+    Variable(Box<VarDecl>),
     /// A definition that did not parse; its error has been reported.
     Error(Span),
 }
@@ -288,7 +291,7 @@ pub enum StmtKind {
     /// `{ ... }`.
     Block(Block),
     /// A variable declaration.
-    Decl(VarDecl),
+    Decl(Box<VarDecl>),
     /// A function defined inside a shader or function (RenderMan allows these).
     Function(Box<FunctionDef>),
     /// An expression evaluated for its effect (an assignment or a call).
@@ -300,7 +303,7 @@ pub enum StmtKind {
     /// `while (cond) body`.
     While { cond: Expr, body: Box<Stmt> },
     /// `for (init; cond; step) body`.
-    For { init: Option<Box<Stmt>>, cond: Option<Expr>, step: Option<Expr>, body: Box<Stmt> },
+    For { init: Option<Box<Stmt>>, cond: Option<Box<Expr>>, step: Option<Box<Expr>>, body: Box<Stmt> },
     /// `break;` or `break n;` (leave n enclosing loops).
     Break { levels: Option<u32> },
     /// `continue;` or `continue n;`.

@@ -42,9 +42,9 @@ pub enum Qualifier {
 /// One entry of a parameter list, before the types of continued declarators are filled in.
 pub enum ParamItem {
     /// `[qualifiers] type declarator`.
-    Typed(Qualifiers, TypeSpec, Declarator),
+    Typed(Box<(Qualifiers, TypeSpec, Declarator)>),
     /// `declarator`, taking the type of the entry before.
-    Continued(Declarator),
+    Continued(Box<Declarator>),
 }
 
 /// The header of a statement that takes a body: `while`, `for`, `illuminance`, ...
@@ -52,7 +52,7 @@ pub enum LoopHead {
     /// `while (cond)`.
     While(Expr),
     /// `for (init; cond; step)`.
-    For(Option<Stmt>, Option<Expr>, Option<Expr>),
+    For(Box<(Option<Box<Stmt>>, Option<Expr>, Option<Expr>)>),
     /// `illuminance(args)`.
     Illuminance(Vec<Expr>),
     /// `illuminate(args)`.
@@ -113,12 +113,25 @@ impl Ctx<'_> {
         Stmt { kind, span: self.span(l, r) }
     }
 
+    /// A boxed statement node from token `l` to `r`.
+    pub fn boxed(&self, l: usize, r: usize, kind: StmtKind) -> Box<Stmt> {
+        Box::new(self.stmt(l, r, kind))
+    }
+
+    /// The statements of a block, out of the boxes the grammar keeps them in.
+    pub fn unbox(&self, stmts: Vec<Box<Stmt>>) -> Vec<Stmt> {
+        stmts.into_iter().map(|s| *s).collect()
+    }
+
     /// A statement made of a loop header and its body.
     pub fn looped(&self, l: usize, r: usize, head: LoopHead, body: Stmt) -> Stmt {
         let body = Box::new(body);
         let kind = match head {
             LoopHead::While(cond) => StmtKind::While { cond, body },
-            LoopHead::For(init, cond, step) => StmtKind::For { init: init.map(Box::new), cond, step, body },
+            LoopHead::For(header) => {
+                let (init, cond, step) = *header;
+                StmtKind::For { init, cond: cond.map(Box::new), step: step.map(Box::new), body }
+            }
             LoopHead::Illuminance(args) => StmtKind::Illuminance { args, body },
             LoopHead::Illuminate(args) => StmtKind::Illuminate { args, body },
             LoopHead::Solar(args) => StmtKind::Solar { args, body },
@@ -284,12 +297,13 @@ impl Ctx<'_> {
         for (separator, item) in items {
             let after_semicolon = separator == Some(true);
             let (qualifiers, ty, d) = match item {
-                ParamItem::Typed(q, t, d) => {
+                ParamItem::Typed(typed) => {
+                    let (q, t, d) = *typed;
                     head = Some((q, t));
                     (q, t, d)
                 }
                 ParamItem::Continued(d) => match head {
-                    Some((q, t)) if !after_semicolon => (q, t, d),
+                    Some((q, t)) if !after_semicolon => (q, t, *d),
                     _ => {
                         self.report(
                             Diagnostic::error(

@@ -2,6 +2,8 @@
 //! CPU interpreter. See ARCHITECTURE.md at the repository root for the pipeline.
 
 pub mod diag;
+pub mod ir;
+pub mod sema;
 pub mod source;
 pub mod stdlib;
 pub mod syntax;
@@ -20,6 +22,8 @@ pub struct Checked {
     pub root: FileId,
     /// The parsed module (partial when there were errors).
     pub module: syntax::ast::Module,
+    /// The checked shaders (empty when the source did not parse; shaders with errors are left out).
+    pub program: ir::Program,
     /// Errors and warnings, in the order they were found.
     pub diagnostics: Diagnostics,
 }
@@ -37,5 +41,11 @@ pub fn check_source(name: &str, text: &str, loader: &dyn SourceLoader) -> Checke
     let root = sources.add_file(name, text, None);
     let mut diagnostics = Diagnostics::default();
     let module = syntax::parse_file(&mut sources, root, loader, &mut diagnostics);
-    Checked { sources, root, module, diagnostics }
+    // Semantics on a tree with syntax errors would only echo them.
+    let program = if diagnostics.has_errors() {
+        ir::Program::default()
+    } else {
+        sema::check(&module, &mut diagnostics)
+    };
+    Checked { sources, root, module, program, diagnostics }
 }

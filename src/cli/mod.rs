@@ -1,6 +1,7 @@
 //! Command-line arguments and the subcommands behind them.
 
 mod check;
+mod explain;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -19,6 +20,18 @@ pub struct Cli {
 enum Command {
     /// Check shader sources and print their diagnostics.
     Check(CheckArgs),
+    /// Print each shader's parameters and variables with their types, rates and stages.
+    Explain(ExplainArgs),
+}
+
+/// Arguments of `patina explain`.
+#[derive(clap::Args, Debug)]
+pub struct ExplainArgs {
+    /// The shader file.
+    file: PathBuf,
+    /// A directory to search for `#include` files.
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
 }
 
 /// How diagnostics are printed.
@@ -62,5 +75,6 @@ pub enum ColorChoice {
 pub fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
         Command::Check(args) => check::run(args),
+        Command::Explain(args) => explain::run(args),
     }
 }

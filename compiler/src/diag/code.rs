@@ -62,7 +62,8 @@ codes! {
     ConditionalAfterElse = "E0208",
     /// An `#if`/`#elif` operand that is not an integer constant expression.
     InvalidConditionExpr = "E0209",
-    /// `#define` or `#undef` without a macro name.
+    /// `#define`, `#undef`, `#ifdef` or `#ifndef` without a macro name, or with something else where
+    /// the name should be.
     MissingMacroName = "E0210",
     /// A function-like macro whose parameter list is malformed.
     MalformedMacroParams = "E0211",
@@ -76,7 +77,7 @@ codes! {
     InvalidPaste = "E0215",
     /// `#` in a function-like macro not followed by a parameter.
     InvalidStringize = "E0216",
-    /// An `#error` directive was reached.
+    /// An `#error` directive was reached (or a `#warning`, reported as a warning).
     ErrorDirective = "E0217",
     /// Macro expansion nested too deeply or produced too many tokens.
     ExpansionLimit = "E0218",
@@ -116,14 +117,73 @@ codes! {
     ResourceLimit = "E0315",
 
     // Unsupported RenderMan features.
-    /// Ray tracing (`trace`, `transmission`, `occlusion`, `indirectdiffuse`, `environment` lookups by ray).
+    /// Ray tracing (`trace`, `transmission`, `occlusion`, `indirectdiffuse`, `rayinfo`, `photonmap`,
+    /// `caustic`).
     RayTracing = "E0401",
-    /// Message passing between shaders (`surface(...)`, `lightsource(...)`, `incident`, ...).
+    /// Message passing between shaders (`surface(...)`, `lightsource(...)`, `incident(...)`, ...).
     MessagePassing = "E0402",
     /// The `gather` construct.
     Gather = "E0403",
     /// Renderer queries (`attribute`, `option`, `rendererinfo`, `textureinfo`).
     RendererQuery = "E0404",
+
+    // Names and types.
+    /// A name that no declaration, parameter or predefined variable defines.
+    UnknownName = "E0501",
+    /// A call of a function that neither the source nor the built-ins define.
+    UnknownFunction = "E0502",
+    /// No overload of a function accepts the arguments.
+    NoMatchingOverload = "E0503",
+    /// Several overloads fit equally well.
+    AmbiguousCall = "E0504",
+    /// A value of one type where another is needed, with no implicit conversion.
+    TypeMismatch = "E0505",
+    /// An operator applied to types it does not take.
+    InvalidOperands = "E0506",
+    /// An assignment to something that is not a variable (or a read-only one).
+    NotAssignable = "E0507",
+    /// A name declared twice in one scope, or a function defined twice.
+    Redefinition = "E0508",
+    /// A `return` whose value does not fit the function, or a missing one.
+    InvalidReturn = "E0509",
+    /// A function that calls itself (functions are inlined).
+    Recursion = "E0510",
+    /// A built-in or predefined variable used in a kind of shader that lacks it.
+    WrongShaderKind = "E0511",
+    /// A per-light variable (`L`, `Cl`) outside `illuminance`, `illuminate` or `solar`.
+    OutsideLightLoop = "E0512",
+    /// A statement in a place it cannot be (`illuminance` in a light shader, `break` outside a loop).
+    MisplacedStatement = "E0513",
+    /// A tuple `(a, b, c)` whose type the context does not say.
+    UntypedTuple = "E0514",
+    /// A constructor with the wrong number or kind of components.
+    InvalidConstructor = "E0515",
+    /// Indexing something that has no elements, or with a non-integer.
+    InvalidIndex = "E0516",
+    /// A conversion that does not exist, even explicitly.
+    InvalidCast = "E0517",
+    /// An unknown coordinate or colour space name.
+    UnknownSpace = "E0518",
+    /// A qualifier that does not apply where it is written.
+    InvalidQualifier = "E0519",
+    /// An assignment or `++` inside `?:`, `&&` or `||`, whose evaluation would change.
+    EffectInCondition = "E0520",
+
+    // Rates.
+    /// A value of a higher rate stored in a variable declared with a lower one.
+    RateTooHigh = "E0601",
+    /// RenderMan's form of E0601: a varying value assigned to a uniform variable.
+    VaryingToUniform = "E0602",
+    /// A per-light value leaving the light loop without `integrate` or `illuminance`.
+    PerlightEscape = "E0603",
+    /// A screen-space derivative where only a lower rate is allowed.
+    DerivativeRate = "E0604",
+    /// A store under a condition or loop of a higher rate than the variable's.
+    ControlDependence = "E0605",
+    /// `integrate` of a value that is not per-light.
+    IntegrateNotPerlight = "E0606",
+    /// A parameter default that is not constant or primitive-group rate.
+    DefaultRate = "E0607",
 }
 
 impl std::fmt::Display for Code {

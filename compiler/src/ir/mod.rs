@@ -1,0 +1,299 @@
+//! The typed IR: what the semantic stage produces and every later stage consumes.
+//!
+//! A [`Shader`] is one body: its parameters, locals and expressions live in arenas indexed by
+//! [`LocalId`] and [`ExprId`], and its statements form a tree of [`Block`]s. User functions are
+//! already inlined (each call is an [`Stmt::Inline`] block), so every expression has one type, one
+//! rate and one span. Expressions are pure; every effect is a statement.
+
+pub mod types;
+
+use smol_str::SmolStr;
+
+use crate::sema::builtins::Builtin;
+use crate::sema::globals::Global;
+use crate::source::Span;
+use crate::syntax::ast::ShaderKind;
+use types::{Rate, Type};
+
+/// Index of a local variable (parameters included) in [`Shader::locals`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct LocalId(pub u32);
+
+/// Index of an expression in [`Shader::exprs`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ExprId(pub u32);
+
+/// What a local variable is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LocalKind {
+    /// A shader parameter, with its default value (evaluated on the host).
+    Param {
+        /// The default.
+        default: Option<ExprId>,
+        /// Whether the shader writes it (`output`).
+        output: bool,
+    },
+    /// A variable declared in the body (or a parameter of an inlined function).
+    Var,
+    /// A temporary the compiler made (results of inlined calls, `x++`).
+    Temp,
+}
+
+/// A variable.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Local {
+    /// Its name (for temporaries, a description).
+    pub name: SmolStr,
+    /// Its type.
+    pub ty: Type,
+    /// Its rate: declared, or inferred from what is stored in it.
+    pub rate: Rate,
+    /// Whether the rate was declared (a contract) or inferred.
+    pub declared: bool,
+    /// What it is.
+    pub kind: LocalKind,
+    /// Where it was declared.
+    pub span: Span,
+}
+
+/// A literal value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Literal {
+    /// A float.
+    Float(f64),
+    /// An `int`.
+    Int(i32),
+    /// A `uint`.
+    Uint(u32),
+    /// A `bool`.
+    Bool(bool),
+    /// A string.
+    String(SmolStr),
+}
+
+/// Unary operations, resolved for their operand type.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum UnaryOp {
+    /// Arithmetic negation.
+    Neg,
+    /// Logical not (bool).
+    Not,
+    /// Bitwise complement (int, uint).
+    BitNot,
+}
+
+/// Binary operations, resolved for their operand types.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum BinaryOp {
+    /// `+`, componentwise.
+    Add,
+    /// `-`, componentwise.
+    Sub,
+    /// `*`: componentwise, or matrix product when either side is a matrix.
+    Mul,
+    /// `/`, componentwise.
+    Div,
+    /// `%` on integers.
+    Rem,
+    /// `.`: dot product.
+    Dot,
+    /// `^` on vectors: cross product.
+    Cross,
+    /// `^` on integers: exclusive or.
+    BitXor,
+    /// `&` on integers.
+    BitAnd,
+    /// `|` on integers.
+    BitOr,
+    /// `<<` on integers.
+    Shl,
+    /// `>>` on integers.
+    Shr,
+    /// `==`.
+    Eq,
+    /// `!=`.
+    Ne,
+    /// `<`.
+    Lt,
+    /// `<=`.
+    Le,
+    /// `>`.
+    Gt,
+    /// `>=`.
+    Ge,
+    /// `&&` (both sides are evaluated; they have no effects).
+    And,
+    /// `||`.
+    Or,
+}
+
+/// The expressions.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    /// A literal.
+    Literal(Literal),
+    /// The value of a local.
+    Local(LocalId),
+    /// The value of a predefined variable.
+    Global(&'static Global),
+    /// A unary operation.
+    Unary(UnaryOp, ExprId),
+    /// A binary operation.
+    Binary(BinaryOp, ExprId, ExprId),
+    /// The operand converted to this expression's type (float to color by duplication, int to
+    /// float, point to vector, ...).
+    Convert(ExprId),
+    /// A value of this expression's type built from components (vectors, matrices, arrays).
+    Construct(Vec<ExprId>),
+    /// A point, vector, normal, colour or matrix given in a named space, converted to "current".
+    FromSpace {
+        /// The space it was written in (`"shader"`, `"hsv"`, ...).
+        space: SmolStr,
+        /// The value in that space.
+        value: ExprId,
+    },
+    /// An element of an array or a component of a vector or matrix row.
+    Index(ExprId, ExprId),
+    /// `cond ? a : b` (both sides are evaluated; they have no effects).
+    Select(ExprId, ExprId, ExprId),
+    /// A built-in function; `output` arguments are locals written by the call.
+    Builtin(&'static Builtin, Vec<ExprId>),
+}
+
+/// An expression with its type, rate and span.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    /// What it computes.
+    pub kind: ExprKind,
+    /// Its type.
+    pub ty: Type,
+    /// How often it is computed.
+    pub rate: Rate,
+    /// Where it was written (for an inlined function, inside the function).
+    pub span: Span,
+}
+
+/// Where a store writes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Place {
+    /// A local (or a parameter).
+    Local(LocalId),
+    /// A writable predefined variable (`Ci`, `P`, ...).
+    Global(&'static Global),
+    /// One element or component of a place.
+    Index(Box<Place>, ExprId),
+}
+
+/// A sequence of statements.
+pub type Block = Vec<Stmt>;
+
+/// The statements.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stmt {
+    /// Evaluate for the outputs of a built-in.
+    Eval(ExprId),
+    /// Store a value.
+    Store {
+        /// Where.
+        place: Place,
+        /// What.
+        value: ExprId,
+        /// The assignment in the source.
+        span: Span,
+    },
+    /// Two-way branch.
+    If {
+        /// The condition (bool).
+        cond: ExprId,
+        /// Taken when true.
+        then: Block,
+        /// Taken when false.
+        otherwise: Block,
+    },
+    /// A loop: `while (cond) { body; step }`; `continue` runs `step`.
+    Loop {
+        /// Tested before each iteration; `None` loops until `break`.
+        cond: Option<ExprId>,
+        /// The body.
+        body: Block,
+        /// Run after the body and after `continue` (a `for` loop's third clause).
+        step: Block,
+        /// The loop in the source, for iteration-budget diagnostics.
+        span: Span,
+    },
+    /// Leave `levels` enclosing loops.
+    Break(u32),
+    /// Go to the next iteration of the loop `levels` out.
+    Continue(u32),
+    /// Leave the enclosing inlined function (with its result stored first) or the shader.
+    Return,
+    /// An inlined call: the body of a user function, left by `Return`.
+    Inline {
+        /// The function's name.
+        function: SmolStr,
+        /// The body, with parameters already stored.
+        body: Block,
+        /// The call in the source.
+        span: Span,
+    },
+    /// `illuminance`: run `body` once per bound light that passes the test in `args`.
+    Illuminance {
+        /// Category (optional), position, and optional axis and angle.
+        args: Vec<ExprId>,
+        /// The per-light body.
+        body: Block,
+    },
+    /// `illuminate` (local light) or `solar` (distant light): the light's emission.
+    Emit {
+        /// Whether this is `solar`.
+        solar: bool,
+        /// Position or axis, and optional cone.
+        args: Vec<ExprId>,
+        /// The body that sets `Cl`.
+        body: Block,
+    },
+}
+
+/// A checked shader, with every function it calls inlined.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shader {
+    /// Its name.
+    pub name: SmolStr,
+    /// Surface, light, ...
+    pub kind: ShaderKind,
+    /// Whether it is written in Stanford style.
+    pub stanford: bool,
+    /// Stanford shaders return a value of this type; RenderMan shaders return `void`.
+    pub result: Type,
+    /// For Stanford shaders, the local holding the returned value.
+    pub result_local: Option<LocalId>,
+    /// The parameters, in order (they are also in `locals`).
+    pub params: Vec<LocalId>,
+    /// Every variable.
+    pub locals: Vec<Local>,
+    /// Every expression.
+    pub exprs: Vec<Expr>,
+    /// The body.
+    pub body: Block,
+    /// The definition in the source.
+    pub span: Span,
+}
+
+impl Shader {
+    /// The expression `id`.
+    pub fn expr(&self, id: ExprId) -> &Expr {
+        &self.exprs[id.0 as usize]
+    }
+
+    /// The local `id`.
+    pub fn local(&self, id: LocalId) -> &Local {
+        &self.locals[id.0 as usize]
+    }
+}
+
+/// The checked program: every shader of a source file.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Program {
+    /// The shaders, in source order.
+    pub shaders: Vec<Shader>,
+}

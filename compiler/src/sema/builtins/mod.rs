@@ -1,0 +1,265 @@
+//! Built-in functions: their overloads, written as signatures the way the RenderMan and Stanford
+//! specifications print them, parsed once into [`Builtin`] records.
+//!
+//! Each line of [`table::SIGNATURES`] is one overload, or a family of them:
+//!
+//! ```text
+//! [for T in TYPE|TYPE|...:] RET NAME(PARAM, PARAM, ...) [attr, attr]
+//! ```
+//!
+//! A parameter is `[output] TYPE`, `TYPE[]` for an array of any length, or `TYPE...` for any number
+//! (zero or more) of further arguments of that type; `T` stands for each type of the `for` list in
+//! turn. `@numeric` abbreviates `float|color|point|vector|normal|float3|float4` and `@triple`
+//! `color|point|vector|normal|float3`. Attributes say how the result's rate is decided (see
+//! [`RateRule`]) and where the function may be used (see [`Context`]).
+
+mod table;
+
+use std::sync::OnceLock;
+
+use rustc_hash::FxHashMap;
+
+use crate::ir::types::{Base, Type};
+
+/// How a built-in's result rate follows from its arguments.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum RateRule {
+    /// The highest rate among the arguments (most functions).
+    Max,
+    /// A screen-space derivative: fragment rate when an argument varies per vertex or fragment;
+    /// on constant or primitive-group arguments the derivative is exactly 0 at their rate.
+    Derivative,
+    /// Always at least fragment rate (`random`, screen position).
+    Fragment,
+    /// Sums over the bound lights (`ambient`, `diffuse`, `specular`, ...): fragment rate.
+    Lights,
+    /// `integrate`: the argument's rate without `perlight`.
+    Integrate,
+}
+
+/// Where a built-in may be called.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Context {
+    /// Anywhere.
+    Any,
+    /// Only in surface shaders (and functions they call).
+    Surface,
+    /// Only in light shaders.
+    Light,
+}
+
+/// A parameter of a built-in.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub struct BuiltinParam {
+    /// Its type (`array: Some(0)` for an array of any length).
+    pub ty: Type,
+    /// Whether the built-in writes it.
+    pub output: bool,
+}
+
+/// One overload of a built-in function.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Builtin {
+    /// Its name.
+    pub name: &'static str,
+    /// The result type.
+    pub ret: Type,
+    /// The fixed parameters.
+    pub params: Vec<BuiltinParam>,
+    /// The type of any further arguments, for variadic functions.
+    pub rest: Option<Type>,
+    /// How the result's rate is decided.
+    pub rate: RateRule,
+    /// Where it may be called.
+    pub context: Context,
+    /// The signature as written in the table, for diagnostics.
+    pub signature: String,
+}
+
+impl Builtin {
+    /// Whether `n` arguments can be passed.
+    pub fn accepts_count(&self, n: usize) -> bool {
+        if self.rest.is_some() { n >= self.params.len() } else { n == self.params.len() }
+    }
+
+    /// The type expected for argument `i`.
+    pub fn param_type(&self, i: usize) -> Option<BuiltinParam> {
+        self.params.get(i).copied().or_else(|| self.rest.map(|ty| BuiltinParam { ty, output: false }))
+    }
+}
+
+/// All built-ins, by name.
+#[derive(Debug, Default)]
+pub struct Builtins {
+    by_name: FxHashMap<&'static str, Vec<Builtin>>,
+}
+
+impl Builtins {
+    /// The overloads of `name` (empty if there is no such built-in).
+    pub fn overloads(&self, name: &str) -> &[Builtin] {
+        self.by_name.get(name).map_or(&[], Vec::as_slice)
+    }
+
+    /// Every built-in name.
+    pub fn names(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.by_name.keys().copied()
+    }
+}
+
+/// The built-in table, parsed on first use.
+pub fn builtins() -> &'static Builtins {
+    static TABLE: OnceLock<Builtins> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut by_name: FxHashMap<&'static str, Vec<Builtin>> = FxHashMap::default();
+        for line in table::SIGNATURES {
+            for b in parse_line(line).unwrap_or_else(|e| panic!("built-in table: {e} in `{line}`")) {
+                by_name.entry(b.name).or_default().push(b);
+            }
+        }
+        Builtins { by_name }
+    })
+}
+
+fn base_named(name: &str) -> Option<Base> {
+    Some(match name {
+        "void" => Base::Void,
+        "bool" => Base::Bool,
+        "int" => Base::Int,
+        "uint" => Base::Uint,
+        "float" => Base::Float,
+        "clampf" => Base::Clampf,
+        "color" => Base::Color,
+        "point" => Base::Point,
+        "vector" => Base::Vector,
+        "normal" => Base::Normal,
+        "float3" => Base::Float3,
+        "float4" => Base::Float4,
+        "matrix3" => Base::Matrix3,
+        "matrix" | "matrix4" => Base::Matrix4,
+        "string" => Base::String,
+        "texref" => Base::Texref,
+        _ => return None,
+    })
+}
+
+fn expand_set(list: &str) -> Vec<&str> {
+    list.split('|')
+        .flat_map(|t| match t.trim() {
+            "@numeric" => vec!["float", "color", "point", "vector", "normal", "float3", "float4"],
+            "@triple" => vec!["color", "point", "vector", "normal", "float3"],
+            other => vec![other],
+        })
+        .collect()
+}
+
+/// Replaces the whole word `word` (not parts of longer names) in `text`.
+fn replace_word(text: &str, word: &str, with: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find(word) {
+        let before = rest[..i].chars().next_back();
+        let after = rest[i + word.len()..].chars().next();
+        let is_word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+        out.push_str(&rest[..i]);
+        out.push_str(if is_word(before) || is_word(after) { word } else { with });
+        rest = &rest[i + word.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Parses one table line into its overloads.
+fn parse_line(line: &'static str) -> Result<Vec<Builtin>, String> {
+    let (generic, sig) = match line.strip_prefix("for T in ") {
+        Some(rest) => {
+            let (list, sig) = rest.split_once(':').ok_or("missing `:` after the type list")?;
+            (expand_set(list), sig.trim())
+        }
+        None => (vec![""], line.trim()),
+    };
+    // Attributes follow the parameter list: `(...) [a, b]`.
+    let close = sig.rfind(')').ok_or("missing `)`")?;
+    let (sig, attrs) = match sig[close..].find('[') {
+        Some(i) => (sig[..close + i].trim(), sig[close + i + 1..].trim_end().trim_end_matches(']')),
+        None => (sig, ""),
+    };
+    let mut rate = RateRule::Max;
+    let mut context = Context::Any;
+    for attr in attrs.split(',').map(str::trim).filter(|a| !a.is_empty()) {
+        match attr {
+            "deriv" => rate = RateRule::Derivative,
+            "fragment" => rate = RateRule::Fragment,
+            "lights" => rate = RateRule::Lights,
+            "integrate" => rate = RateRule::Integrate,
+            "surface" => context = Context::Surface,
+            "light" => context = Context::Light,
+            other => return Err(format!("unknown attribute `{other}`")),
+        }
+    }
+    let open = sig.find('(').ok_or("missing `(`")?;
+    let close = sig.rfind(')').ok_or("missing `)`")?;
+    let head: Vec<&str> = sig[..open].split_whitespace().collect();
+    let [ret, name] = head.as_slice() else { return Err("expected `RET NAME(`".into()) };
+    let params_text = sig[open + 1..close].trim();
+    let mut out = Vec::new();
+    for t in generic {
+        let resolve = |word: &str| -> Result<Base, String> {
+            let word = if word == "T" { t } else { word };
+            base_named(word).ok_or_else(|| format!("unknown type `{word}`"))
+        };
+        let mut params = Vec::new();
+        let mut rest = None;
+        if !params_text.is_empty() {
+            for p in params_text.split(',').map(str::trim) {
+                let (output, p) = match p.strip_prefix("output ") {
+                    Some(p) => (true, p.trim()),
+                    None => (false, p),
+                };
+                if let Some(variadic) = p.strip_suffix("...") {
+                    rest = Some(Type::of(resolve(variadic.trim())?));
+                } else if let Some(elem) = p.strip_suffix("[]") {
+                    params.push(BuiltinParam {
+                        ty: Type { base: resolve(elem.trim())?, array: Some(0) },
+                        output,
+                    });
+                } else {
+                    params.push(BuiltinParam { ty: Type::of(resolve(p)?), output });
+                }
+            }
+        }
+        let signature = if t.is_empty() { sig.to_string() } else { replace_word(sig, "T", t) };
+        out.push(Builtin { name, ret: Type::of(resolve(ret)?), params, rest, rate, context, signature });
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_parses() {
+        let table = builtins();
+        assert!(table.overloads("sin").iter().any(|b| b.params.len() == 1 && b.ret == Type::FLOAT));
+        let mix: Vec<String> = table.overloads("mix").iter().map(|b| b.ret.to_string()).collect();
+        assert!(mix.contains(&"color".to_string()) && mix.contains(&"float4".to_string()), "{mix:?}");
+        let du = &table.overloads("Du")[0];
+        assert_eq!(du.rate, RateRule::Derivative);
+    }
+
+    #[test]
+    fn lines_parse_into_overloads() {
+        let b = parse_line("for T in float|color: T spline(float, T, T, T, T, T...) [deriv]").unwrap();
+        assert_eq!(b.len(), 2);
+        assert_eq!(b[1].ret, Type::of(Base::Color));
+        assert_eq!(b[1].params.len(), 5);
+        assert_eq!(b[1].rest, Some(Type::of(Base::Color)));
+        assert!(b[1].accepts_count(7) && !b[1].accepts_count(4));
+        assert_eq!(b[1].signature, "color spline(float, color, color, color, color, color...)");
+        let f = parse_line("void fresnel(vector, normal, float, output float, output float)").unwrap();
+        assert!(f[0].params[3].output && !f[0].params[2].output);
+        let a = parse_line("float spline(float, float[])").unwrap();
+        assert_eq!(a[0].params[1].ty.array, Some(0));
+        assert!(parse_line("float nope(flot)").is_err());
+    }
+}

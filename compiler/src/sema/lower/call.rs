@@ -1,0 +1,261 @@
+//! Calls: overload resolution over user functions and built-ins, and inlining of user functions.
+//!
+//! Candidates are ranked by the summed cost of their argument conversions. A tie is broken by the
+//! type the context expects (RenderMan's `color noise(P)` chooses by result type), then in favour
+//! of a `float` result (RenderMan's default for `noise`).
+
+use super::Lowerer;
+use super::expr::suggest;
+use super::stmt::declared_type;
+use crate::diag::{Code, Diagnostic};
+use crate::ir::types::Type;
+use crate::ir::{Block, ExprId, ExprKind};
+use crate::sema::builtins::{self, Builtin, Context};
+use crate::sema::convert;
+use crate::source::Span;
+use crate::syntax::ast;
+
+/// A function that could be called: a user function or a built-in overload.
+#[derive(Copy, Clone)]
+enum Candidate<'a> {
+    User(&'a ast::FunctionDef),
+    Builtin(&'static Builtin),
+}
+
+impl Candidate<'_> {
+    fn ret(&self) -> Type {
+        match self {
+            Candidate::User(f) => declared_type(f.return_type, None),
+            Candidate::Builtin(b) => b.ret,
+        }
+    }
+
+    fn accepts_count(&self, n: usize) -> bool {
+        match self {
+            Candidate::User(f) => f.params.len() == n,
+            Candidate::Builtin(b) => b.accepts_count(n),
+        }
+    }
+
+    /// The type of parameter `i` and whether it is an output.
+    fn param(&self, i: usize) -> Option<(Type, bool)> {
+        match self {
+            Candidate::User(f) => f
+                .params
+                .get(i)
+                .map(|p| (declared_type(p.ty, p.array.as_ref()), p.qualifiers.output.is_some())),
+            Candidate::Builtin(b) => b.param_type(i).map(|p| (p.ty, p.output)),
+        }
+    }
+
+    fn signature(&self) -> String {
+        match self {
+            Candidate::User(f) => {
+                let params: Vec<String> = f
+                    .params
+                    .iter()
+                    .map(|p| format!("{} {}", declared_type(p.ty, p.array.as_ref()), p.name.name))
+                    .collect();
+                format!("{} {}({})", declared_type(f.return_type, None), f.name.name, params.join(", "))
+            }
+            Candidate::Builtin(b) => b.signature.clone(),
+        }
+    }
+
+    /// The total cost of passing arguments of types `args`, or `None` if they do not fit.
+    fn cost(&self, args: &[Type]) -> Option<u32> {
+        if !self.accepts_count(args.len()) {
+            return None;
+        }
+        let mut total = 0;
+        for (i, arg) in args.iter().enumerate() {
+            let (param, output) = self.param(i)?;
+            total += if output {
+                (*arg == param || (param.array == Some(0) && arg.base == param.base)).then_some(0)?
+            } else {
+                convert::implicit_cost(*arg, param)?
+            };
+        }
+        Some(total)
+    }
+}
+
+impl Lowerer<'_> {
+    pub(super) fn call(
+        &mut self,
+        callee: &ast::Ident,
+        args: &[ast::Expr],
+        expected: Option<Type>,
+        span: Span,
+        out: &mut Block,
+    ) -> Option<ExprId> {
+        let functions = self.functions;
+        let user: Vec<Candidate<'_>> = functions
+            .get(&callee.name)
+            .map_or(Vec::new(), |fs| fs.iter().map(|f| Candidate::User(f)).collect());
+        let candidates: Vec<Candidate<'_>> = if user.is_empty() {
+            builtins::builtins().overloads(&callee.name).iter().map(Candidate::Builtin).collect()
+        } else {
+            user
+        };
+        if candidates.is_empty() {
+            let known: Vec<String> = functions
+                .keys()
+                .map(|k| k.to_string())
+                .chain(builtins::builtins().names().map(String::from))
+                .collect();
+            let close = suggest(&callee.name, known.iter().map(String::as_str)).map(str::to_string);
+            let mut d = Diagnostic::error(
+                Code::UnknownFunction,
+                format!("cannot find function `{}`", callee.name),
+                callee.span,
+                "not a built-in or a function of this file",
+            );
+            if let Some(close) = close {
+                d = d.with_help(format!("a function with a similar name exists: `{close}`"));
+            }
+            self.error(d);
+            return None;
+        }
+        // Tuples take their type from the parameter when every candidate agrees on it.
+        let mut lowered = Vec::with_capacity(args.len());
+        for (i, a) in args.iter().enumerate() {
+            let hint = match &a.kind {
+                ast::ExprKind::Tuple(_) => {
+                    let types: Vec<Type> =
+                        candidates.iter().filter_map(|c| c.param(i).map(|p| p.0)).collect();
+                    types.first().copied().filter(|t| types.iter().all(|x| x == t))
+                }
+                _ => None,
+            };
+            lowered.push(self.expr(a, hint, out));
+        }
+        let lowered: Vec<ExprId> = lowered.into_iter().collect::<Option<_>>()?;
+        let types: Vec<Type> = lowered.iter().map(|&a| self.ty(a)).collect();
+        let chosen = self.resolve(callee, &candidates, &types, expected, span)?;
+        match chosen {
+            Candidate::User(f) => {
+                if self.frames.iter().any(|frame| frame.name == f.name.name) {
+                    self.error(
+                        Diagnostic::error(
+                            Code::Recursion,
+                            format!("function `{}` calls itself", f.name.name),
+                            callee.span,
+                            "recursive call",
+                        )
+                        .with_label(f.name.span, "defined here")
+                        .with_note("functions are inlined into shaders, so they cannot recurse; use a loop"),
+                    );
+                    return None;
+                }
+                let args: Vec<Option<ExprId>> = lowered.into_iter().map(Some).collect();
+                let result = self.inline_body(f, &args, span, out);
+                let ret = declared_type(f.return_type, None);
+                match result {
+                    Some(local) => Some(self.push_expr(ExprKind::Local(local), ret, span)),
+                    // A void call used as a statement: give the caller something to ignore.
+                    None => Some(self.push_expr(ExprKind::Construct(Vec::new()), Type::VOID, span)),
+                }
+            }
+            Candidate::Builtin(b) => {
+                match b.context {
+                    Context::Surface if self.kind != ast::ShaderKind::Surface => {
+                        return self.wrong_kind(callee, "surface");
+                    }
+                    Context::Light if self.kind != ast::ShaderKind::Light => {
+                        return self.wrong_kind(callee, "light");
+                    }
+                    _ => {}
+                }
+                let mut converted = Vec::with_capacity(lowered.len());
+                for (i, &arg) in lowered.iter().enumerate() {
+                    let (param, output) = chosen.param(i).expect("resolution checked the count");
+                    if output {
+                        self.place_of(arg)?;
+                        converted.push(arg);
+                    } else if param.array == Some(0) {
+                        converted.push(arg);
+                    } else {
+                        converted.push(self.coerce(arg, param, "the parameter")?);
+                    }
+                }
+                Some(self.push_expr(ExprKind::Builtin(b, converted), b.ret, span))
+            }
+        }
+    }
+
+    fn wrong_kind(&mut self, callee: &ast::Ident, needs: &str) -> Option<ExprId> {
+        self.error(Diagnostic::error(
+            Code::WrongShaderKind,
+            format!("`{}` can only be called in {needs} shaders", callee.name),
+            callee.span,
+            format!("this is {} {} shader", super::expr::article(self.kind), self.kind.keyword()),
+        ));
+        None
+    }
+
+    fn resolve<'c>(
+        &mut self,
+        callee: &ast::Ident,
+        candidates: &[Candidate<'c>],
+        args: &[Type],
+        expected: Option<Type>,
+        span: Span,
+    ) -> Option<Candidate<'c>> {
+        let scored: Vec<(u32, Candidate<'c>)> =
+            candidates.iter().filter_map(|c| c.cost(args).map(|k| (k, *c))).collect();
+        let list = |cands: &mut dyn Iterator<Item = &Candidate<'c>>| {
+            cands.take(8).map(|c| format!("  {}", c.signature())).collect::<Vec<_>>().join("\n")
+        };
+        let arg_list = args.iter().map(|t| t.to_string()).collect::<Vec<_>>().join(", ");
+        let Some(best) = scored.iter().map(|s| s.0).min() else {
+            let count = candidates.len();
+            self.error(
+                Diagnostic::error(
+                    Code::NoMatchingOverload,
+                    format!("no overload of `{}` takes ({arg_list})", callee.name),
+                    span,
+                    format!("called with ({arg_list})"),
+                )
+                .with_note(format!(
+                    "the {} candidate{}:\n{}{}",
+                    count,
+                    if count == 1 { " is" } else { "s are" },
+                    list(&mut candidates.iter()),
+                    if count > 8 { format!("\n  ... and {} more", count - 8) } else { String::new() }
+                )),
+            );
+            return None;
+        };
+        let mut best: Vec<Candidate<'c>> = scored.iter().filter(|s| s.0 == best).map(|s| s.1).collect();
+        if best.len() > 1
+            && let Some(want) = expected
+        {
+            let matching: Vec<Candidate<'c>> = best.iter().copied().filter(|c| c.ret() == want).collect();
+            if !matching.is_empty() {
+                best = matching;
+            }
+        }
+        if best.len() > 1 {
+            let floats: Vec<Candidate<'c>> =
+                best.iter().copied().filter(|c| c.ret() == Type::FLOAT).collect();
+            if floats.len() == 1 {
+                best = floats;
+            }
+        }
+        if best.len() > 1 {
+            self.error(
+                Diagnostic::error(
+                    Code::AmbiguousCall,
+                    format!("call of `{}` with ({arg_list}) is ambiguous", callee.name),
+                    span,
+                    "several overloads fit equally well",
+                )
+                .with_note(format!("the candidates are:\n{}", list(&mut best.iter())))
+                .with_help("convert an argument, or cast the result to the type you want: `color noise(P)`"),
+            );
+            return None;
+        }
+        best.first().copied()
+    }
+}

@@ -1,0 +1,369 @@
+//! Lowering: the AST of one shader, with every function it calls inlined, to a typed IR body.
+//!
+//! Types are decided here; rates are decided afterwards by `sema::rates`, which needs the whole
+//! body. Errors poison the expression they occur in (`None`), so one mistake gives one diagnostic.
+
+mod call;
+mod expr;
+mod stmt;
+
+use rustc_hash::{FxHashMap, FxHashSet};
+use smol_str::SmolStr;
+
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::types::{Base, Frequency, Rate, Type};
+use crate::ir::{Block, Expr, ExprId, ExprKind, Literal, Local, LocalId, LocalKind, Shader, Stmt};
+use crate::source::Span;
+use crate::syntax::ast::{self, ShaderKind, ShaderStyle};
+
+use super::convert;
+
+/// The functions a module defines, by name.
+pub type FunctionTable<'a> = FxHashMap<SmolStr, Vec<&'a ast::FunctionDef>>;
+
+/// What the statements being lowered are inside of.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum LightLoop {
+    /// Not inside a light loop.
+    None,
+    /// Inside `illuminance` (surface shaders).
+    Illuminance,
+    /// Inside `illuminate` or `solar` (light shaders).
+    Emission,
+}
+
+/// A function being inlined.
+struct Frame {
+    name: SmolStr,
+    /// Where the callee's result goes, for non-void functions.
+    result: Option<LocalId>,
+    ret: Type,
+    /// The scope depth where the callee's scopes start (it cannot see the caller's locals).
+    scope_base: usize,
+    call_span: Span,
+}
+
+/// The state of lowering one shader.
+pub(super) struct Lowerer<'a> {
+    diags: &'a mut Diagnostics,
+    reported: FxHashSet<(Code, Span, String)>,
+    functions: &'a FunctionTable<'a>,
+    kind: ShaderKind,
+    stanford: bool,
+    locals: Vec<Local>,
+    exprs: Vec<Expr>,
+    /// Name scopes, innermost last; scope 0 holds module-level variables.
+    scopes: Vec<FxHashMap<SmolStr, LocalId>>,
+    frames: Vec<Frame>,
+    loops: u32,
+    light_loop: LightLoop,
+    /// Inside an operand of `?:`, `&&` or `||`, where effects are not allowed.
+    no_effects: u32,
+    result_local: Option<LocalId>,
+    result_type: Type,
+}
+
+/// Lowers one shader; `None` if it had errors (they have been reported).
+pub(super) fn lower_shader(
+    shader: &ast::ShaderDef,
+    globals: &[&ast::VarDecl],
+    functions: &FunctionTable<'_>,
+    diags: &mut Diagnostics,
+) -> Option<Shader> {
+    let before = diags.iter().filter(|d| d.is_error()).count();
+    let (stanford, result_type) = match &shader.style {
+        ShaderStyle::RenderMan => (false, Type::VOID),
+        ShaderStyle::Stanford { return_type } => (true, Type::of(Base::from_ast(return_type.name))),
+    };
+    let mut l = Lowerer {
+        diags,
+        reported: FxHashSet::default(),
+        functions,
+        kind: shader.kind,
+        stanford,
+        locals: Vec::new(),
+        exprs: Vec::new(),
+        scopes: vec![FxHashMap::default()],
+        frames: Vec::new(),
+        loops: 0,
+        light_loop: LightLoop::None,
+        no_effects: 0,
+        result_local: None,
+        result_type,
+    };
+    let mut body = Vec::new();
+    for decl in globals {
+        l.declaration(decl, &mut body);
+    }
+    l.scopes.push(FxHashMap::default());
+    let params = l.params(&shader.params, &mut body);
+    if stanford {
+        let result = l.new_local(
+            "result".into(),
+            result_type,
+            Rate::CONSTANT,
+            false,
+            LocalKind::Temp,
+            shader.name.span,
+        );
+        l.result_local = Some(result);
+    }
+    l.block(&shader.body.stmts, &mut body);
+    if stanford && !stmt::always_returns(&shader.body.stmts) {
+        l.error(
+            Diagnostic::error(
+                Code::InvalidReturn,
+                format!("shader `{}` must return a `{}`", shader.name.name, result_type),
+                shader.body.span.end_point(),
+                "the body can end without `return`",
+            )
+            .with_label(shader.name.span, format!("declared to return `{result_type}`")),
+        );
+    }
+    let errors = l.diags.iter().filter(|d| d.is_error()).count();
+    if errors > before {
+        return None;
+    }
+    Some(Shader {
+        name: shader.name.name.clone(),
+        kind: shader.kind,
+        stanford,
+        result: result_type,
+        result_local: l.result_local,
+        params,
+        locals: l.locals,
+        exprs: l.exprs,
+        body,
+        span: shader.span,
+    })
+}
+
+/// Checks a function's body on its own, for functions no shader calls (their errors would
+/// otherwise go unreported).
+pub(super) fn check_function(f: &ast::FunctionDef, functions: &FunctionTable<'_>, diags: &mut Diagnostics) {
+    let mut l = Lowerer {
+        diags,
+        reported: FxHashSet::default(),
+        functions,
+        kind: f.context.map_or(ShaderKind::Surface, |c| c.0),
+        stanford: false,
+        locals: Vec::new(),
+        exprs: Vec::new(),
+        scopes: vec![FxHashMap::default()],
+        frames: Vec::new(),
+        loops: 0,
+        light_loop: LightLoop::None,
+        no_effects: 0,
+        result_local: None,
+        result_type: Type::VOID,
+    };
+    let mut body = Vec::new();
+    let args: Vec<Option<ExprId>> = f
+        .params
+        .iter()
+        .map(|p| {
+            let ty = stmt::declared_type(p.ty, p.array.as_ref());
+            Some(l.push_expr(ExprKind::Literal(Literal::Float(0.0)), ty, p.span))
+        })
+        .collect();
+    l.inline_body(f, &args, f.span, &mut body);
+}
+
+impl Lowerer<'_> {
+    /// Reports a diagnostic once (an inlined function's body is lowered at every call).
+    fn error(&mut self, d: Diagnostic) {
+        let key = (d.code, d.primary_span(), d.message.clone());
+        if self.reported.insert(key) {
+            let d = match self.frames.last() {
+                Some(frame) if !d.labels.iter().any(|l| l.span == frame.call_span) => {
+                    let call = frame.call_span;
+                    let name = frame.name.clone();
+                    d.with_label(call, format!("in this call of `{name}`"))
+                }
+                _ => d,
+            };
+            self.diags.push(d);
+        }
+    }
+
+    fn push_expr(&mut self, kind: ExprKind, ty: Type, span: Span) -> ExprId {
+        let id = ExprId(self.exprs.len() as u32);
+        self.exprs.push(Expr { kind, ty, rate: Rate::CONSTANT, span });
+        id
+    }
+
+    fn expr_ref(&self, id: ExprId) -> &Expr {
+        &self.exprs[id.0 as usize]
+    }
+
+    fn ty(&self, id: ExprId) -> Type {
+        self.exprs[id.0 as usize].ty
+    }
+
+    fn span_of(&self, id: ExprId) -> Span {
+        self.exprs[id.0 as usize].span
+    }
+
+    fn new_local(
+        &mut self,
+        name: SmolStr,
+        ty: Type,
+        rate: Rate,
+        declared: bool,
+        kind: LocalKind,
+        span: Span,
+    ) -> LocalId {
+        let id = LocalId(self.locals.len() as u32);
+        self.locals.push(Local { name, ty, rate, declared, kind, span });
+        id
+    }
+
+    /// Binds `name` in the innermost scope, reporting a redefinition in the same scope.
+    fn bind(&mut self, name: &ast::Ident, id: LocalId) {
+        let scope = self.scopes.last_mut().expect("a scope is open");
+        if let Some(&previous) = scope.get(&name.name) {
+            let previous_span = self.locals[previous.0 as usize].span;
+            self.error(
+                Diagnostic::error(
+                    Code::Redefinition,
+                    format!("`{}` is declared twice in the same scope", name.name),
+                    name.span,
+                    "declared again here",
+                )
+                .with_label(previous_span, "first declared here"),
+            );
+            return;
+        }
+        scope.insert(name.name.clone(), id);
+    }
+
+    /// The local a name refers to: this function's scopes, then the module's.
+    fn lookup_local(&self, name: &str) -> Option<LocalId> {
+        let base = self.frames.last().map_or(0, |f| f.scope_base);
+        self.scopes[base.max(1).min(self.scopes.len())..]
+            .iter()
+            .rev()
+            .chain(self.scopes[..1].iter())
+            .find_map(|s| s.get(name).copied())
+    }
+
+    /// Converts `id` to `to` implicitly, reporting a mismatch at `id`'s span; `what` names the
+    /// destination for the message.
+    fn coerce(&mut self, id: ExprId, to: Type, what: &str) -> Option<ExprId> {
+        let from = self.ty(id);
+        if from == to {
+            return Some(id);
+        }
+        if convert::implicit_cost(from, to).is_some() {
+            return Some(self.convert(id, to));
+        }
+        let span = self.span_of(id);
+        let mut d = Diagnostic::error(
+            Code::TypeMismatch,
+            format!("expected `{to}`, found `{from}`"),
+            span,
+            format!("this is `{from}`, {what} is `{to}`"),
+        );
+        if convert::explicit_ok(from, to) {
+            d = d.with_help(format!("convert it explicitly: `{} (...)`", to.base.name()));
+        } else if from.base == Base::Float4 && to.base.is_triple() {
+            d = d.with_help("take the first three components with `rgb(...)`");
+        }
+        self.error(d);
+        None
+    }
+
+    /// A conversion node (or a converted literal, so that `Kd = 1` stores a float).
+    fn convert(&mut self, id: ExprId, to: Type) -> ExprId {
+        let span = self.span_of(id);
+        if let ExprKind::Literal(lit) = &self.expr_ref(id).kind {
+            let value = match lit {
+                Literal::Int(v) => Some(f64::from(*v)),
+                Literal::Uint(v) => Some(f64::from(*v)),
+                _ => None,
+            };
+            if let (Some(v), true) = (value, to.base.is_float_scalar()) {
+                return self.push_expr(ExprKind::Literal(Literal::Float(v)), to, span);
+            }
+        }
+        self.push_expr(ExprKind::Convert(id), to, span)
+    }
+
+    /// Turns a scalar condition into a `bool` (`x` means `x != 0`).
+    fn condition(&mut self, id: ExprId) -> Option<ExprId> {
+        let ty = self.ty(id);
+        match ty.base {
+            Base::Bool if ty.array.is_none() => Some(id),
+            Base::Float | Base::Clampf | Base::Int | Base::Uint if ty.array.is_none() => {
+                let span = self.span_of(id);
+                let zero = match ty.base {
+                    Base::Int => Literal::Int(0),
+                    Base::Uint => Literal::Uint(0),
+                    _ => Literal::Float(0.0),
+                };
+                let zero = self.push_expr(ExprKind::Literal(zero), ty, span);
+                Some(self.push_expr(ExprKind::Binary(crate::ir::BinaryOp::Ne, id, zero), Type::BOOL, span))
+            }
+            _ => {
+                let span = self.span_of(id);
+                self.error(Diagnostic::error(
+                    Code::TypeMismatch,
+                    format!("a condition must be `bool` or a number, found `{ty}`"),
+                    span,
+                    "not a truth value",
+                ));
+                None
+            }
+        }
+    }
+
+    /// Emits a store statement.
+    fn store(&mut self, place: crate::ir::Place, value: ExprId, span: Span, out: &mut Block) {
+        out.push(Stmt::Store { place, value, span });
+    }
+
+    /// The rate a declaration's qualifiers give, and whether it is a contract.
+    fn declared_rate(&mut self, q: &ast::Qualifiers, is_param: bool) -> (Rate, bool) {
+        let perlight = q.perlight.is_some();
+        if perlight && !self.stanford && q.perlight.is_some() {
+            // RenderMan style has no `perlight` qualifier: per-light values live in illuminance.
+            let span = q.perlight.unwrap_or_default();
+            self.error(
+                Diagnostic::error(
+                    Code::InvalidQualifier,
+                    "`perlight` belongs to Stanford-style shaders",
+                    span,
+                    "not available in a RenderMan-style shader",
+                )
+                .with_help("compute per-light values inside `illuminance (...) { ... }`"),
+            );
+        }
+        let frequency = match q.rate.map(|r| r.0) {
+            Some(ast::RateQualifier::Constant) => Some(Frequency::Constant),
+            Some(ast::RateQualifier::Uniform | ast::RateQualifier::PrimitiveGroup) => {
+                Some(Frequency::PrimitiveGroup)
+            }
+            Some(ast::RateQualifier::Vertex) => Some(Frequency::Vertex),
+            Some(ast::RateQualifier::Fragment) => Some(Frequency::Fragment),
+            // RenderMan: varying input parameters are per-vertex primitive variables; varying
+            // variables and outputs are computed per shading point, i.e. per fragment.
+            Some(ast::RateQualifier::Varying) => {
+                Some(if is_param && q.output.is_none() { Frequency::Vertex } else { Frequency::Fragment })
+            }
+            None if self.stanford => {
+                if is_param {
+                    Some(Frequency::PrimitiveGroup)
+                } else {
+                    None
+                }
+            }
+            // RenderMan defaults: parameters are uniform, variables varying.
+            None => Some(if is_param { Frequency::PrimitiveGroup } else { Frequency::Fragment }),
+        };
+        // `perlight` alone fixes the per-light part; the frequency is still inferred.
+        match frequency {
+            Some(frequency) => (Rate { frequency, perlight }, true),
+            None => (Rate { frequency: Frequency::Constant, perlight }, false),
+        }
+    }
+}

@@ -1,0 +1,378 @@
+//! Lowering statements, declarations and parameters.
+
+use rustc_hash::FxHashMap;
+
+use super::{Frame, LightLoop, Lowerer};
+use crate::diag::{Code, Diagnostic};
+use crate::ir::types::{Base, Rate, Type};
+use crate::ir::{Block, ExprId, LocalId, LocalKind, Place, Stmt};
+use crate::syntax::ast::{self, StmtKind};
+
+/// The type a declaration gives: its base type, made an array by the declarator's size.
+pub(super) fn declared_type(ty: ast::TypeSpec, array: Option<&ast::ArraySize>) -> Type {
+    Type { base: Base::from_ast(ty.name), array: array.map(|a| a.len.unwrap_or(0)) }
+}
+
+/// Whether every path through `stmts` ends in `return` (a conservative syntactic check).
+pub(super) fn always_returns(stmts: &[ast::Stmt]) -> bool {
+    stmts.iter().any(|s| match &s.kind {
+        StmtKind::Return(_) => true,
+        StmtKind::Block(b) => always_returns(&b.stmts),
+        StmtKind::If { then, otherwise: Some(otherwise), .. } => {
+            always_returns(std::slice::from_ref(then)) && always_returns(std::slice::from_ref(otherwise))
+        }
+        _ => false,
+    })
+}
+
+impl Lowerer<'_> {
+    /// Lowers statements in a new scope, appending to `out`.
+    pub(super) fn block(&mut self, stmts: &[ast::Stmt], out: &mut Block) {
+        self.scopes.push(FxHashMap::default());
+        for s in stmts {
+            self.stmt(s, out);
+        }
+        self.scopes.pop();
+    }
+
+    fn sub_block(&mut self, s: &ast::Stmt) -> Block {
+        let mut out = Vec::new();
+        self.block(std::slice::from_ref(s), &mut out);
+        out
+    }
+
+    /// Declares and stores the parameters of a shader; returns their locals.
+    pub(super) fn params(&mut self, params: &[ast::Param], out: &mut Block) -> Vec<LocalId> {
+        let mut ids = Vec::with_capacity(params.len());
+        for p in params {
+            let ty = declared_type(p.ty, p.array.as_ref());
+            if p.qualifiers.extern_.is_some() {
+                self.error(Diagnostic::error(
+                    Code::InvalidQualifier,
+                    "a parameter cannot be `extern`",
+                    p.qualifiers.extern_.unwrap_or_default(),
+                    "`extern` names a variable of an enclosing scope",
+                ));
+            }
+            let (rate, declared) = self.declared_rate(&p.qualifiers, true);
+            let default = p.default.as_ref().and_then(|d| {
+                let value = self.expr(d, Some(ty), out)?;
+                self.coerce(value, ty, "the parameter")
+            });
+            let kind = LocalKind::Param { default, output: p.qualifiers.output.is_some() };
+            let id = self.new_local(p.name.name.clone(), ty, rate, declared, kind, p.name.span);
+            self.bind(&p.name, id);
+            ids.push(id);
+        }
+        ids
+    }
+
+    /// Lowers a variable declaration: a local per declarator, and a store of each initialiser.
+    pub(super) fn declaration(&mut self, decl: &ast::VarDecl, out: &mut Block) {
+        if let Some(span) = decl.qualifiers.output {
+            self.error(Diagnostic::error(
+                Code::InvalidQualifier,
+                "only parameters can be `output`",
+                span,
+                "not a parameter",
+            ));
+        }
+        for d in &decl.declarators {
+            let ty = declared_type(decl.ty, d.array.as_ref());
+            if ty.base == Base::Void {
+                self.error(Diagnostic::error(
+                    Code::TypeMismatch,
+                    "a variable cannot be `void`",
+                    decl.ty.span,
+                    "`void` has no values",
+                ));
+                continue;
+            }
+            if decl.qualifiers.extern_.is_some() {
+                // `extern float x;` names a variable of the shader; nothing new is declared.
+                if self.lookup_local(&d.name.name).is_none()
+                    && super::super::globals::lookup(&d.name.name, self.kind, self.stanford).is_none()
+                {
+                    self.error(Diagnostic::error(
+                        Code::UnknownName,
+                        format!("`extern` names `{}`, which is not declared", d.name.name),
+                        d.name.span,
+                        "no such variable",
+                    ));
+                }
+                continue;
+            }
+            let (rate, declared) = self.declared_rate(&decl.qualifiers, false);
+            let init = d.init.as_ref().and_then(|e| {
+                let value = self.expr(e, Some(ty), out)?;
+                self.coerce(value, ty, "the variable")
+            });
+            let id = self.new_local(d.name.name.clone(), ty, rate, declared, LocalKind::Var, d.name.span);
+            if let Some(value) = init {
+                self.store(Place::Local(id), value, d.span, out);
+            }
+            self.bind(&d.name, id);
+        }
+    }
+
+    fn stmt(&mut self, s: &ast::Stmt, out: &mut Block) {
+        match &s.kind {
+            StmtKind::Block(b) => self.block(&b.stmts, out),
+            StmtKind::Decl(d) => self.declaration(d, out),
+            // Local functions are collected with the module's functions and inlined at calls.
+            StmtKind::Function(_) => {}
+            StmtKind::Expr(e) => {
+                if let Some(id) = self.expr(e, None, out)
+                    && matches!(self.expr_ref(id).kind, crate::ir::ExprKind::Builtin(..))
+                {
+                    out.push(Stmt::Eval(id));
+                }
+            }
+            StmtKind::Empty | StmtKind::Error | StmtKind::Gather { .. } => {}
+            StmtKind::If { cond, then, otherwise } => {
+                let cond = self.expr(cond, Some(Type::BOOL), out).and_then(|c| self.condition(c));
+                let then = self.sub_block(then);
+                let otherwise = otherwise.as_ref().map(|o| self.sub_block(o)).unwrap_or_default();
+                if let Some(cond) = cond {
+                    out.push(Stmt::If { cond, then, otherwise });
+                }
+            }
+            StmtKind::While { cond, body } => {
+                let mut prelude = Vec::new();
+                let cond = self.expr(cond, Some(Type::BOOL), &mut prelude).and_then(|c| self.condition(c));
+                if !prelude.is_empty() {
+                    self.error(Diagnostic::error(
+                        Code::EffectInCondition,
+                        "a loop condition cannot assign",
+                        s.span,
+                        "the assignment would run once, not on every test",
+                    ));
+                }
+                self.loops += 1;
+                let body = self.sub_block(body);
+                self.loops -= 1;
+                if let Some(cond) = cond {
+                    out.push(Stmt::Loop { cond: Some(cond), body, step: Vec::new(), span: s.span });
+                }
+            }
+            StmtKind::For { init, cond, step, body } => {
+                self.scopes.push(FxHashMap::default());
+                if let Some(init) = init {
+                    self.stmt(init, out);
+                }
+                let mut prelude = Vec::new();
+                let cond = cond
+                    .as_ref()
+                    .map(|c| self.expr(c, Some(Type::BOOL), &mut prelude).and_then(|c| self.condition(c)));
+                if !prelude.is_empty() {
+                    self.error(Diagnostic::error(
+                        Code::EffectInCondition,
+                        "a loop condition cannot assign",
+                        s.span,
+                        "the assignment would run once, not on every test",
+                    ));
+                }
+                let mut step_block = Vec::new();
+                if let Some(step) = step {
+                    self.expr(step, None, &mut step_block);
+                }
+                self.loops += 1;
+                let body = self.sub_block(body);
+                self.loops -= 1;
+                self.scopes.pop();
+                match cond {
+                    Some(None) => {}
+                    Some(Some(c)) => {
+                        out.push(Stmt::Loop { cond: Some(c), body, step: step_block, span: s.span })
+                    }
+                    None => out.push(Stmt::Loop { cond: None, body, step: step_block, span: s.span }),
+                }
+            }
+            StmtKind::Break { levels } | StmtKind::Continue { levels } => {
+                let levels = levels.unwrap_or(1);
+                let word = if matches!(s.kind, StmtKind::Break { .. }) { "break" } else { "continue" };
+                if levels > self.loops {
+                    let message = if self.loops == 0 {
+                        format!("`{word}` outside a loop")
+                    } else {
+                        format!("`{word} {levels}` leaves more loops than the {} it is in", self.loops)
+                    };
+                    self.error(Diagnostic::error(
+                        Code::MisplacedStatement,
+                        message,
+                        s.span,
+                        "no loop to leave",
+                    ));
+                } else if word == "break" {
+                    out.push(Stmt::Break(levels));
+                } else {
+                    out.push(Stmt::Continue(levels));
+                }
+            }
+            StmtKind::Return(value) => self.return_stmt(value.as_ref(), s.span, out),
+            StmtKind::Illuminance { args, body } => {
+                if self.kind != ast::ShaderKind::Surface || self.stanford {
+                    self.error(
+                        Diagnostic::error(
+                            Code::MisplacedStatement,
+                            "`illuminance` belongs in RenderMan-style surface shaders",
+                            s.span,
+                            "not a RenderMan surface shader",
+                        )
+                        .with_help("Stanford-style shaders sum per-light values with `integrate(...)`"),
+                    );
+                    return;
+                }
+                let args = self.args(args, out);
+                let saved = std::mem::replace(&mut self.light_loop, LightLoop::Illuminance);
+                let body = self.sub_block(body);
+                self.light_loop = saved;
+                if let Some(args) = args {
+                    out.push(Stmt::Illuminance { args, body });
+                }
+            }
+            StmtKind::Illuminate { args, body } | StmtKind::Solar { args, body } => {
+                let solar = matches!(s.kind, StmtKind::Solar { .. });
+                let word = if solar { "solar" } else { "illuminate" };
+                if self.kind != ast::ShaderKind::Light {
+                    self.error(Diagnostic::error(
+                        Code::MisplacedStatement,
+                        format!("`{word}` belongs in light shaders"),
+                        s.span,
+                        "not a light shader",
+                    ));
+                    return;
+                }
+                let args = self.args(args, out);
+                let saved = std::mem::replace(&mut self.light_loop, LightLoop::Emission);
+                let body = self.sub_block(body);
+                self.light_loop = saved;
+                if let Some(args) = args {
+                    out.push(Stmt::Emit { solar, args, body });
+                }
+            }
+        }
+    }
+
+    /// Lowers arguments of a statement (`illuminance(...)`), each without an expected type.
+    fn args(&mut self, args: &[ast::Expr], out: &mut Block) -> Option<Vec<ExprId>> {
+        let lowered: Vec<Option<ExprId>> = args.iter().map(|a| self.expr(a, None, out)).collect();
+        lowered.into_iter().collect()
+    }
+
+    fn return_stmt(&mut self, value: Option<&ast::Expr>, span: crate::source::Span, out: &mut Block) {
+        let (target, ty, what) = match self.frames.last() {
+            Some(frame) => (frame.result, frame.ret, format!("function `{}`", frame.name)),
+            None if self.stanford => (self.result_local, self.result_type, "the shader".to_string()),
+            None => (None, Type::VOID, "a RenderMan-style shader".to_string()),
+        };
+        match (value, target) {
+            (Some(v), Some(target)) => {
+                if let Some(id) = self.expr(v, Some(ty), out).and_then(|id| self.coerce(id, ty, "the result"))
+                {
+                    self.store(Place::Local(target), id, span, out);
+                }
+            }
+            (Some(v), None) => {
+                self.error(Diagnostic::error(
+                    Code::InvalidReturn,
+                    format!("{what} returns no value"),
+                    v.span,
+                    "this value has nowhere to go",
+                ));
+                return;
+            }
+            (None, Some(_)) => {
+                self.error(Diagnostic::error(
+                    Code::InvalidReturn,
+                    format!("{what} must return a `{ty}`"),
+                    span,
+                    "no value returned",
+                ));
+                return;
+            }
+            (None, None) => {}
+        }
+        out.push(Stmt::Return);
+    }
+
+    /// Inlines the body of `f` with its parameters bound to `args`; returns the result's local.
+    pub(super) fn inline_body(
+        &mut self,
+        f: &ast::FunctionDef,
+        args: &[Option<ExprId>],
+        call_span: crate::source::Span,
+        out: &mut Block,
+    ) -> Option<LocalId> {
+        let ret = declared_type(f.return_type, None);
+        let result = (ret.base != Base::Void).then(|| {
+            self.new_local(
+                format!("{} result", f.name.name).into(),
+                ret,
+                Rate::CONSTANT,
+                false,
+                LocalKind::Temp,
+                call_span,
+            )
+        });
+        let scope_base = self.scopes.len();
+        self.scopes.push(FxHashMap::default());
+        let mut body = Vec::new();
+        let saved_loops = std::mem::replace(&mut self.loops, 0);
+        let mut outputs = Vec::new();
+        for (p, arg) in f.params.iter().zip(args) {
+            let ty = declared_type(p.ty, p.array.as_ref());
+            let (rate, declared) = self.declared_rate_function_param(&p.qualifiers);
+            let id = self.new_local(p.name.name.clone(), ty, rate, declared, LocalKind::Var, p.name.span);
+            if let Some(arg) = arg {
+                let arg_span = self.span_of(*arg);
+                if let Some(value) = self.coerce(*arg, ty, "the parameter") {
+                    self.store(Place::Local(id), value, arg_span, &mut body);
+                }
+                if p.qualifiers.output.is_some() {
+                    outputs.push((id, *arg));
+                }
+            }
+            self.bind(&p.name, id);
+        }
+        self.frames.push(Frame { name: f.name.name.clone(), result, ret, scope_base, call_span });
+        let stmts = &f.body.stmts;
+        for s in stmts {
+            self.stmt(s, &mut body);
+        }
+        self.frames.pop();
+        self.loops = saved_loops;
+        self.scopes.truncate(scope_base);
+        if ret.base != Base::Void && !always_returns(stmts) {
+            self.error(
+                Diagnostic::error(
+                    Code::InvalidReturn,
+                    format!("function `{}` must return a `{ret}` on every path", f.name.name),
+                    f.body.span.end_point(),
+                    "the body can end without `return`",
+                )
+                .with_label(f.return_type.span, format!("declared to return `{ret}`")),
+            );
+        }
+        out.push(Stmt::Inline { function: f.name.name.clone(), body, span: call_span });
+        for (local, arg) in outputs {
+            if let Some(place) = self.place_of(arg) {
+                let value = self.push_expr(
+                    crate::ir::ExprKind::Local(local),
+                    self.locals[local.0 as usize].ty,
+                    call_span,
+                );
+                self.store(place, value, call_span, out);
+            }
+        }
+        result
+    }
+
+    fn declared_rate_function_param(&mut self, q: &ast::Qualifiers) -> (Rate, bool) {
+        // A function parameter without a rate takes the rate of its argument at each call.
+        if q.rate.is_none() {
+            return (Rate { perlight: q.perlight.is_some(), ..Rate::CONSTANT }, false);
+        }
+        self.declared_rate(q, false)
+    }
+}

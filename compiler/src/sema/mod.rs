@@ -1,0 +1,98 @@
+//! The semantic stage: names, types, overloads and rates. Lowers the AST to the typed IR.
+//!
+//! `lower` decides types and inlines user functions into each shader; `rates` then decides every
+//! value's rate and checks the declared ones. `explain` prints what was decided.
+
+pub mod builtins;
+pub mod convert;
+pub mod explain;
+pub mod globals;
+mod lower;
+pub mod rates;
+
+use rustc_hash::FxHashMap;
+
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::Program;
+use crate::syntax::ast::{self, Item, StmtKind};
+use lower::FunctionTable;
+
+/// Collects every function of the module, local functions included, reporting duplicates.
+fn functions<'a>(module: &'a ast::Module, diags: &mut Diagnostics) -> FunctionTable<'a> {
+    fn locals<'a>(stmts: &'a [ast::Stmt], out: &mut Vec<&'a ast::FunctionDef>) {
+        for s in stmts {
+            match &s.kind {
+                StmtKind::Function(f) => {
+                    out.push(f);
+                    locals(&f.body.stmts, out);
+                }
+                StmtKind::Block(b) => locals(&b.stmts, out),
+                _ => {}
+            }
+        }
+    }
+    let mut all: Vec<&ast::FunctionDef> = Vec::new();
+    for item in &module.items {
+        match item {
+            Item::Function(f) => {
+                all.push(f);
+                locals(&f.body.stmts, &mut all);
+            }
+            Item::Shader(s) => locals(&s.body.stmts, &mut all),
+            _ => {}
+        }
+    }
+    let mut table: FunctionTable<'a> = FxHashMap::default();
+    for f in all {
+        let signature = |f: &ast::FunctionDef| -> Vec<(ast::TypeName, Option<u32>)> {
+            f.params.iter().map(|p| (p.ty.name, p.array.map(|a| a.len.unwrap_or(0)))).collect()
+        };
+        let overloads = table.entry(f.name.name.clone()).or_default();
+        if let Some(previous) = overloads.iter().find(|g| signature(g) == signature(f)) {
+            diags.push(
+                Diagnostic::error(
+                    Code::Redefinition,
+                    format!("function `{}` is defined twice with the same parameter types", f.name.name),
+                    f.name.span,
+                    "defined again here",
+                )
+                .with_label(previous.name.span, "first defined here"),
+            );
+            continue;
+        }
+        overloads.push(f);
+    }
+    table
+}
+
+/// Checks a parsed module and lowers each of its shaders to the typed IR. Shaders with errors are
+/// left out of the program; their diagnostics are in `diags`.
+pub fn check(module: &ast::Module, diags: &mut Diagnostics) -> Program {
+    let table = functions(module, diags);
+    let globals: Vec<&ast::VarDecl> = module
+        .items
+        .iter()
+        .filter_map(|i| if let Item::Variable(v) = i { Some(&**v) } else { None })
+        .collect();
+    let mut program = Program::default();
+    let mut called_somewhere = false;
+    for item in &module.items {
+        if let Item::Shader(s) = item {
+            called_somewhere = true;
+            if let Some(mut shader) = lower::lower_shader(s, &globals, &table, diags) {
+                rates::infer(&mut shader, diags);
+                program.shaders.push(shader);
+            }
+        }
+    }
+    // Functions are checked where they are inlined; a module of functions only (a library) is
+    // checked function by function.
+    if !called_somewhere {
+        for overloads in table.values() {
+            for f in overloads {
+                lower::check_function(f, &table, diags);
+            }
+        }
+    }
+    program
+}

@@ -1,0 +1,473 @@
+//! Rates: inference for undeclared variables, promotion by the maximum rule, control dependence,
+//! the required rates of derivatives and light sums, `perlight` and `integrate`, and the checks of
+//! declared rates — each violation reported with where the value is used and where its rate came
+//! from.
+//!
+//! Inference is a fixpoint: an undeclared variable's rate is the join of everything stored in it
+//! (and of the conditions and loops the stores are under); expression rates follow from their
+//! operands. The lattice is finite and the joins monotone, so it terminates.
+
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::types::{Frequency, Rate};
+use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
+use crate::sema::builtins::RateRule;
+use crate::source::Span;
+
+/// Why a value has its rate: the place to point at.
+#[derive(Copy, Clone, Debug, PartialEq)]
+struct Origin {
+    span: Span,
+    why: Why,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq)]
+enum Why {
+    /// A literal or other constant.
+    Constant,
+    /// A predefined variable, parameter or declared variable with this rate.
+    Declared,
+    /// A screen-space derivative (fragment only).
+    Derivative,
+    /// A function that is always per fragment.
+    Fragment,
+    /// A sum over lights.
+    Lights,
+    /// A value stored into an undeclared variable.
+    Stored,
+}
+
+struct Analysis<'s> {
+    shader: &'s mut Shader,
+    origins: Vec<Origin>,
+    local_origins: Vec<Origin>,
+    changed: bool,
+    /// Stores to check once rates are final: (place root, value, control rate, control origin, store span).
+    checks: Vec<(Target, ExprId, Rate, Option<Span>, Span)>,
+}
+
+#[derive(Copy, Clone)]
+enum Target {
+    Local(LocalId),
+    Global(&'static crate::sema::globals::Global),
+}
+
+fn root(place: &Place) -> Target {
+    match place {
+        Place::Local(l) => Target::Local(*l),
+        Place::Global(g) => Target::Global(g),
+        Place::Index(inner, _) => root(inner),
+    }
+}
+
+/// Infers the rates of `shader`'s values and checks every declared rate.
+pub fn infer(shader: &mut Shader, diags: &mut Diagnostics) {
+    let constant = Origin { span: shader.span, why: Why::Constant };
+    let local_origins = shader
+        .locals
+        .iter()
+        .map(|l| Origin { span: l.span, why: if l.declared { Why::Declared } else { Why::Constant } })
+        .collect();
+    let mut a = Analysis {
+        origins: vec![constant; shader.exprs.len()],
+        local_origins,
+        shader,
+        changed: true,
+        checks: Vec::new(),
+    };
+    let mut rounds = 0;
+    while a.changed && rounds < 64 {
+        a.changed = false;
+        a.checks.clear();
+        a.exprs();
+        let body = std::mem::take(&mut a.shader.body);
+        a.block(&body, Rate::CONSTANT, None, false);
+        a.shader.body = body;
+        rounds += 1;
+    }
+    a.exprs();
+    a.report(diags);
+}
+
+impl Analysis<'_> {
+    /// Recomputes every expression's rate from its operands (operands come first in the arena).
+    fn exprs(&mut self) {
+        for i in 0..self.shader.exprs.len() {
+            let (rate, origin) = self.rate_of(i);
+            self.shader.exprs[i].rate = rate;
+            self.origins[i] = origin;
+        }
+    }
+
+    fn rate_of(&self, i: usize) -> (Rate, Origin) {
+        let e = &self.shader.exprs[i];
+        let span = e.span;
+        let join_all = |ids: &[ExprId]| -> (Rate, Origin) {
+            let mut rate = Rate::CONSTANT;
+            let mut origin = Origin { span, why: Why::Constant };
+            for &id in ids {
+                let r = self.shader.exprs[id.0 as usize].rate;
+                if r.frequency > rate.frequency || (r.perlight && !rate.perlight) {
+                    origin = self.origins[id.0 as usize];
+                }
+                rate = rate.join(r);
+            }
+            (rate, origin)
+        };
+        match &e.kind {
+            ExprKind::Literal(_) => (Rate::CONSTANT, Origin { span, why: Why::Constant }),
+            ExprKind::Local(l) => {
+                let local = &self.shader.locals[l.0 as usize];
+                let origin = if local.declared {
+                    Origin { span, why: Why::Declared }
+                } else {
+                    self.local_origins[l.0 as usize]
+                };
+                (local.rate, origin)
+            }
+            ExprKind::Global(g) => {
+                (Rate { frequency: g.frequency, perlight: g.perlight }, Origin { span, why: Why::Declared })
+            }
+            ExprKind::Unary(_, a) | ExprKind::Convert(a) => join_all(&[*a]),
+            ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => join_all(&[*a, *b]),
+            ExprKind::Select(c, a, b) => join_all(&[*c, *a, *b]),
+            ExprKind::Construct(parts) => join_all(parts),
+            ExprKind::FromSpace { space, value } => {
+                let (rate, origin) = join_all(&[*value]);
+                // Leaving "current" needs the space's matrix, known per draw.
+                if space != "current" && rate.frequency < Frequency::PrimitiveGroup {
+                    (rate.join(Rate::UNIFORM), Origin { span, why: Why::Declared })
+                } else {
+                    (rate, origin)
+                }
+            }
+            ExprKind::Builtin(b, args) => {
+                let (rate, origin) = join_all(args);
+                match b.rate {
+                    RateRule::Max => (rate, origin),
+                    RateRule::Derivative if rate.frequency >= Frequency::Vertex => (
+                        Rate { frequency: Frequency::Fragment, perlight: rate.perlight },
+                        Origin { span, why: Why::Derivative },
+                    ),
+                    // The derivative of a constant or per-draw value is exactly 0, at its rate.
+                    RateRule::Derivative => (rate, origin),
+                    RateRule::Fragment => (rate.join(Rate::FRAGMENT), Origin { span, why: Why::Fragment }),
+                    RateRule::Lights => (rate.join(Rate::FRAGMENT), Origin { span, why: Why::Lights }),
+                    RateRule::Integrate => (Rate { perlight: false, ..rate }, origin),
+                }
+            }
+        }
+    }
+
+    fn rate(&self, id: ExprId) -> Rate {
+        self.shader.exprs[id.0 as usize].rate
+    }
+
+    /// Walks statements under a control rate (conditions and loops enclosing them).
+    fn block(&mut self, block: &Block, control: Rate, control_origin: Option<Span>, in_light_loop: bool) {
+        for stmt in block {
+            match stmt {
+                Stmt::Store { place, value, span } => {
+                    self.store(place, *value, control, control_origin, *span, in_light_loop);
+                    if let Place::Index(..) = place {
+                        // Indices are read too; their rates flow into the stored element's variable.
+                    }
+                }
+                Stmt::Eval(id) => {
+                    // Built-ins with output parameters write their locals at the call's rate.
+                    if let ExprKind::Builtin(b, args) = &self.shader.exprs[id.0 as usize].kind {
+                        let outputs: Vec<ExprId> = args
+                            .iter()
+                            .enumerate()
+                            .filter(|(i, _)| b.param_type(*i).is_some_and(|p| p.output))
+                            .map(|(_, a)| *a)
+                            .collect();
+                        for out in outputs {
+                            if let ExprKind::Local(l) = self.shader.exprs[out.0 as usize].kind {
+                                self.raise(l, *id, control, control_origin, in_light_loop);
+                            }
+                        }
+                    }
+                }
+                Stmt::If { cond, then, otherwise } => {
+                    let (inner, origin) = self.under(control, control_origin, *cond);
+                    self.block(then, inner, origin, in_light_loop);
+                    self.block(otherwise, inner, origin, in_light_loop);
+                }
+                Stmt::Loop { cond, body, step, .. } => {
+                    let (mut inner, mut origin) = match cond {
+                        Some(c) => self.under(control, control_origin, *c),
+                        None => (control, control_origin),
+                    };
+                    // A loop left under a varying condition runs a varying number of times.
+                    if let Some((rate, span)) = self.exit_conditions(body) {
+                        if rate.frequency > inner.frequency {
+                            origin = Some(span);
+                        }
+                        inner = inner.join(Rate { perlight: false, ..rate });
+                    }
+                    self.block(body, inner, origin, in_light_loop);
+                    self.block(step, inner, origin, in_light_loop);
+                }
+                Stmt::Inline { body, .. } => {
+                    let (mut inner, mut origin) = (control, control_origin);
+                    if let Some((rate, span)) = self.exit_conditions(body) {
+                        if rate.frequency > inner.frequency {
+                            origin = Some(span);
+                        }
+                        inner = inner.join(Rate { perlight: false, ..rate });
+                    }
+                    self.block(body, inner, origin, in_light_loop);
+                }
+                Stmt::Illuminance { args, body } | Stmt::Emit { args, body, .. } => {
+                    let mut inner = control;
+                    let mut origin = control_origin;
+                    for a in args {
+                        let r = self.rate(*a);
+                        if r.frequency > inner.frequency {
+                            origin = Some(self.shader.exprs[a.0 as usize].span);
+                        }
+                        inner = inner.join(Rate { perlight: false, ..r });
+                    }
+                    let lights = matches!(stmt, Stmt::Illuminance { .. });
+                    self.block(body, inner, origin, in_light_loop || lights);
+                }
+                Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+            }
+        }
+    }
+
+    /// The control rate inside a statement conditioned on `cond`.
+    fn under(&self, control: Rate, origin: Option<Span>, cond: ExprId) -> (Rate, Option<Span>) {
+        let r = self.rate(cond);
+        let origin = if r.frequency > control.frequency {
+            Some(self.shader.exprs[cond.0 as usize].span)
+        } else {
+            origin
+        };
+        (control.join(Rate { perlight: false, ..r }), origin)
+    }
+
+    /// The highest rate of the conditions under which `block` is left early (`break`, `continue`,
+    /// `return`), with the span of that condition.
+    fn exit_conditions(&self, block: &Block) -> Option<(Rate, Span)> {
+        fn exits(block: &Block) -> bool {
+            block.iter().any(|s| match s {
+                Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => true,
+                Stmt::If { then, otherwise, .. } => exits(then) || exits(otherwise),
+                Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => exits(body),
+                _ => false,
+            })
+        }
+        let mut best: Option<(Rate, Span)> = None;
+        for s in block {
+            if let Stmt::If { cond, then, otherwise } = s {
+                if exits(then) || exits(otherwise) {
+                    let r = self.rate(*cond);
+                    if best.is_none_or(|(b, _)| r.frequency > b.frequency) {
+                        best = Some((r, self.shader.exprs[cond.0 as usize].span));
+                    }
+                }
+                for inner in [then, otherwise] {
+                    if let Some((r, span)) = self.exit_conditions(inner)
+                        && best.is_none_or(|(b, _)| r.frequency > b.frequency)
+                    {
+                        best = Some((r, span));
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    fn store(
+        &mut self,
+        place: &Place,
+        value: ExprId,
+        control: Rate,
+        origin: Option<Span>,
+        span: Span,
+        in_light_loop: bool,
+    ) {
+        let mut value_rate = self.rate(value);
+        // Inside `illuminance`, storing into a variable accumulates over the lights: the variable
+        // holds one value, not one per light (RenderMan's semantics).
+        if in_light_loop && !self.shader.stanford {
+            value_rate.perlight = false;
+        }
+        match root(place) {
+            Target::Local(l) => {
+                let local = &self.shader.locals[l.0 as usize];
+                if !local.declared {
+                    let new = local.rate.join(value_rate).join(control);
+                    if new != local.rate {
+                        let why = if value_rate.frequency >= control.frequency || origin.is_none() {
+                            self.origins[value.0 as usize]
+                        } else {
+                            Origin { span: origin.unwrap_or(span), why: Why::Stored }
+                        };
+                        self.local_origins[l.0 as usize] =
+                            if why.why == Why::Constant { Origin { span, why: Why::Stored } } else { why };
+                        self.shader.locals[l.0 as usize].rate = new;
+                        self.changed = true;
+                    }
+                }
+                self.checks.push((Target::Local(l), value, control, origin, span));
+            }
+            Target::Global(g) => self.checks.push((Target::Global(g), value, control, origin, span)),
+        }
+    }
+
+    /// An output argument written by a built-in.
+    fn raise(&mut self, l: LocalId, call: ExprId, control: Rate, origin: Option<Span>, in_light_loop: bool) {
+        let span = self.shader.exprs[call.0 as usize].span;
+        self.store(&Place::Local(l), call, control, origin, span, in_light_loop);
+    }
+
+    fn report(&mut self, diags: &mut Diagnostics) {
+        let stanford = self.shader.stanford;
+        // Parameter defaults are evaluated on the host, once per draw.
+        for p in self.shader.params.clone() {
+            let local = &self.shader.locals[p.0 as usize];
+            if let LocalKind::Param { default: Some(d), .. } = local.kind {
+                let rate = self.rate(d);
+                if rate.frequency > Frequency::PrimitiveGroup {
+                    let origin = self.origins[d.0 as usize];
+                    diags.push(
+                        Diagnostic::error(
+                            Code::DefaultRate,
+                            format!(
+                                "the default of `{}` must be known once per draw, but it is {rate}",
+                                local.name
+                            ),
+                            self.shader.exprs[d.0 as usize].span,
+                            format!("this is {rate}"),
+                        )
+                        .with_label(origin.span, format!("{rate} because of this"))
+                        .with_note("defaults are computed on the host before drawing"),
+                    );
+                }
+            }
+        }
+        let mut seen = std::collections::HashSet::new();
+        for (target, value, control, control_origin, span) in std::mem::take(&mut self.checks) {
+            let (name, declared, decl_span, is_result) = match target {
+                Target::Local(l) => {
+                    let local = &self.shader.locals[l.0 as usize];
+                    if !local.declared && !(stanford && Some(l) == self.shader.result_local) {
+                        continue;
+                    }
+                    let declared =
+                        if Some(l) == self.shader.result_local { Rate::FRAGMENT } else { local.rate };
+                    (local.name.to_string(), declared, local.span, Some(l) == self.shader.result_local)
+                }
+                Target::Global(g) => (
+                    g.name.to_string(),
+                    Rate { frequency: Frequency::Fragment, perlight: g.perlight },
+                    span,
+                    false,
+                ),
+            };
+            let mut value_rate = self.rate(value);
+            let light_stripped = !stanford && value_rate.perlight && !declared.perlight;
+            if light_stripped {
+                // Checked by scope rules instead: RenderMan per-light values only exist in illuminance.
+                value_rate.perlight = false;
+            }
+            let origin = self.origins[value.0 as usize];
+            let value_span = self.shader.exprs[value.0 as usize].span;
+            if !seen.insert((value_span, span)) {
+                continue;
+            }
+            if value_rate.perlight && !declared.perlight {
+                let what = if is_result { "the shader's result".to_string() } else { format!("`{name}`") };
+                diags.push(
+                    Diagnostic::error(
+                        Code::PerlightEscape,
+                        format!("a per-light value cannot be stored in {what}"),
+                        value_span,
+                        "one value per light",
+                    )
+                    .with_label(origin.span, "per-light because of this")
+                    .with_help("sum it over the lights with `integrate(...)`"),
+                );
+                continue;
+            }
+            if !value_rate.fits_in(declared) {
+                let mut d = if origin.why == Why::Derivative {
+                    Diagnostic::error(
+                        Code::DerivativeRate,
+                        format!(
+                            "a screen-space derivative cannot be stored in `{name}`, declared {declared}"
+                        ),
+                        value_span,
+                        "derivatives exist only per fragment",
+                    )
+                    .with_label(origin.span, "this derivative is per fragment")
+                } else if !stanford {
+                    Diagnostic::error(
+                        Code::VaryingToUniform,
+                        format!("cannot assign a varying value to the uniform variable `{name}`"),
+                        value_span,
+                        format!("this value is varying ({})", value_rate.frequency.name()),
+                    )
+                    .with_label(origin.span, "varying because of this")
+                } else {
+                    Diagnostic::error(
+                        Code::RateTooHigh,
+                        format!(
+                            "cannot store a {} value in `{name}`, declared {declared}",
+                            value_rate.frequency.name()
+                        ),
+                        value_span,
+                        format!("this value is {}", value_rate.frequency.name()),
+                    )
+                    .with_label(origin.span, format!("{} because of this", value_rate.frequency.name()))
+                };
+                d = d.with_label(decl_span, format!("`{name}` is declared {declared} here"));
+                if stanford && origin.why != Why::Derivative {
+                    d = d.with_help(format!(
+                        "declare `{name}` {} or leave its rate out to let it be inferred",
+                        value_rate.frequency.name()
+                    ));
+                }
+                diags.push(d);
+                continue;
+            }
+            if !control.fits_in(Rate { perlight: true, ..declared }) {
+                let condition = control_origin.unwrap_or(span);
+                diags.push(
+                    Diagnostic::error(
+                        Code::ControlDependence,
+                        format!(
+                            "`{name}` is declared {declared} but assigned under a {} condition",
+                            control.frequency.name()
+                        ),
+                        span,
+                        format!("this assignment happens per {}", control.frequency.name()),
+                    )
+                    .with_label(condition, format!("this condition is {}", control.frequency.name()))
+                    .with_label(decl_span, format!("`{name}` is declared {declared} here")),
+                );
+            }
+        }
+        // `integrate` of a value that is the same for every light is almost certainly a mistake.
+        for (i, e) in self.shader.exprs.iter().enumerate() {
+            if let ExprKind::Builtin(b, args) = &e.kind
+                && b.rate == RateRule::Integrate
+                && let Some(&arg) = args.first()
+                && !self.shader.exprs[arg.0 as usize].rate.perlight
+            {
+                let _ = i;
+                diags.push(
+                    Diagnostic::warning(
+                        Code::IntegrateNotPerlight,
+                        "`integrate` of a value that is the same for every light",
+                        self.shader.exprs[arg.0 as usize].span,
+                        "not per-light",
+                    )
+                    .with_help("this multiplies the value by the number of lights; `integrate` is meant for perlight values"),
+                );
+            }
+        }
+    }
+}

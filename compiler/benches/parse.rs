@@ -1,11 +1,14 @@
-//! Front-end throughput: lexing, preprocessing and parsing a generated 5,000-line source.
+//! Front-end throughput: lexing, preprocessing and parsing a generated 5,000-line source (the
+//! semantic stage is measured separately, in `check.rs`).
 //!
 //! Criterion reports the throughput in "elements" per second, and each element is one source line,
 //! so it reads as lines per second (target: over a million in release).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use patina_compiler::check_source;
-use patina_compiler::syntax::preprocess::MemoryLoader;
+use patina_compiler::diag::Diagnostics;
+use patina_compiler::source::SourceMap;
+use patina_compiler::syntax::{self, preprocess::MemoryLoader};
 
 /// A source of about `lines` lines in the mix a real shader library has: macros, helper functions
 /// with loops and branches, shaders of both styles.
@@ -62,7 +65,17 @@ fn bench_parse(c: &mut Criterion) {
     assert!(checked.diagnostics.iter().all(|d| !d.is_error()), "the generated source must be valid");
     let mut group = c.benchmark_group("front end");
     group.throughput(Throughput::Elements(lines));
-    group.bench_function("check 5000 lines", |b| b.iter(|| check_source("gen.sl", &src, &loader)));
+    group.bench_function("parse 5000 lines", |b| {
+        b.iter(|| {
+            let mut sources = SourceMap::new();
+            let root = sources.add_file("gen.sl", src.as_str(), None);
+            let mut diags = Diagnostics::default();
+            syntax::parse_file(&mut sources, root, &loader, &mut diags)
+        })
+    });
+    group.bench_function("check 5000 lines (with semantics)", |b| {
+        b.iter(|| check_source("gen.sl", &src, &loader))
+    });
     group.finish();
 }
 

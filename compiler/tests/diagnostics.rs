@@ -131,6 +131,64 @@ fn float_too_large() {
     insta::assert_snapshot!("float_too_large", text);
 }
 
+#[test]
+fn float_just_above_max() {
+    // Rounds to infinity in f32 (the largest finite f32 is 3.40282347e38).
+    let (codes, text) = run(&lines(&[
+        "surface bright(float intensity = 3.4028236e38)",
+        "{",
+        "    Ci = Cs * intensity;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0107"]);
+    insta::assert_snapshot!("float_just_above_max", text);
+}
+
+#[test]
+fn float_max_is_accepted() {
+    // The largest finite f32, as `f32::MAX` prints it: it does not round to infinity.
+    let (codes, text) = run(&lines(&[
+        "surface bright(float intensity = 3.4028235e38)",
+        "{",
+        "    Ci = Cs * intensity;",
+        "}",
+    ]));
+    assert_eq!(codes, [] as [&str; 0], "{text}");
+}
+
+#[test]
+fn skipped_group_is_not_lexed() {
+    // Text in a group the conditionals skip may be anything, as in C: notes, half-written code.
+    let (codes, text) = run(&with_matte(&[
+        "#if 0",
+        "It's unfinished: @todo port the 1.2.3 \"hair model, cost 2.5e- per sample",
+        "#define HAIR_WIDTH 0.0.1",
+        "#else",
+        "#define HAIR_WIDTH 0.01",
+        "#endif",
+    ]));
+    assert_eq!(codes, [] as [&str; 0], "{text}");
+}
+
+#[test]
+fn unterminated_comment_after_if_0() {
+    // The comment starts in compiled text (the directive's line), so it is reported; it hides the
+    // `#endif`, which the second error says.
+    let (codes, text) =
+        run(&with_matte(&["#if 0 /* disabled until the new BRDF lands", "#define NEW_BRDF", "#endif"]));
+    assert_eq!(codes, ["E0102", "E0207"]);
+    insta::assert_snapshot!("unterminated_comment_after_if_0", text);
+}
+
+#[test]
+fn unterminated_comment_in_skipped_group() {
+    // C reports an unterminated comment even in skipped text: comments are removed before
+    // directives are read, so this one hides the `#endif` and everything after it.
+    let (codes, text) = run(&with_matte(&["#if 0", "/* old version", "#define OLD", "#endif"]));
+    assert_eq!(codes, ["E0102", "E0207"]);
+    insta::assert_snapshot!("unterminated_comment_in_skipped_group", text);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Preprocessor errors (E02xx)
 
@@ -241,6 +299,23 @@ fn elif_after_else() {
 }
 
 #[test]
+fn elif_after_active_else() {
+    // The `#else` branch is the one compiled; what follows the misplaced `#elif` is skipped with it
+    // (compiled, its `#define` would redefine SAMPLES).
+    let (codes, text) = run(&with_matte(&[
+        "#ifdef HIGH_QUALITY",
+        "#define SAMPLES 16",
+        "#else",
+        "#define SAMPLES 4",
+        "#elif MEDIUM_QUALITY",
+        "#define SAMPLES 8",
+        "#endif",
+    ]));
+    assert_eq!(codes, ["E0208"]);
+    insta::assert_snapshot!("elif_after_active_else", text);
+}
+
+#[test]
 fn condition_missing_operand() {
     let (codes, text) = run(&with_matte(&["#if QUALITY >", "#define SAMPLES 16", "#endif"]));
     assert_eq!(codes, ["E0209"]);
@@ -302,6 +377,20 @@ fn unclosed_macro_params() {
     let (codes, text) = run(&with_matte(&["#define LERP(a, b"]));
     assert_eq!(codes, ["E0211"]);
     insta::assert_snapshot!("unclosed_macro_params", text);
+}
+
+#[test]
+fn macro_arity_in_expression() {
+    // The call stays in the expression as a name, so the rest of the statement parses.
+    let (codes, text) = run(&lines(&[
+        "#define LERP(a, b, t) ((a) + ((b) - (a)) * (t))",
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    Ci = LERP(Cs, 1) * Kd;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0212"]);
+    insta::assert_snapshot!("macro_arity_in_expression", text);
 }
 
 #[test]
@@ -389,10 +478,33 @@ fn error_directive() {
 }
 
 #[test]
+fn error_directive_without_message() {
+    let (codes, text) = run(&with_matte(&["#ifndef SHADING_MODEL", "#error", "#endif"]));
+    assert_eq!(codes, ["E0217"]);
+    insta::assert_snapshot!("error_directive_without_message", text);
+}
+
+#[test]
 fn warning_directive() {
     let (codes, text) = run(&with_matte(&["#warning the matte shader ignores opacity"]));
     assert_eq!(codes, ["E0217"]);
     insta::assert_snapshot!("warning_directive", text);
+}
+
+#[test]
+fn expansion_too_deep() {
+    // A chain of macros each naming the next, longer than the nesting limit. The use stands as its
+    // name and the rest of the shader, closing brace included, is read as written.
+    let mut src: Vec<String> = vec!["#define LEVEL0 Kd".into()];
+    src.extend((1..=205).map(|i| format!("#define LEVEL{i} LEVEL{}", i - 1)));
+    src.extend(
+        ["surface plastic(float Kd = 1)", "{", "    Ci = Cs * LEVEL205;", "    Oi = Os;", "}"]
+            .map(String::from),
+    );
+    let src: Vec<&str> = src.iter().map(String::as_str).collect();
+    let (codes, text) = run(&lines(&src));
+    assert_eq!(codes, ["E0218"]);
+    insta::assert_snapshot!("expansion_too_deep", text);
 }
 
 #[test]
@@ -473,6 +585,30 @@ fn missing_semicolon_stanford() {
 }
 
 #[test]
+fn missing_semicolon_after_macro_call() {
+    // The `;` belongs after the use of the macro, not at the end of its `#define`.
+    let (codes, text) = run(&lines(&[
+        "#define SHADE(c) Ci = (c) * Kd",
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    SHADE(Cs)",
+        "    Oi = Os;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0303"]);
+    insta::assert_snapshot!("missing_semicolon_after_macro_call", text);
+}
+
+#[test]
+fn unexpected_end_after_type() {
+    let mut src = MATTE.to_vec();
+    src.push("float");
+    let (codes, text) = run(&lines(&src));
+    assert_eq!(codes, ["E0302"]);
+    insta::assert_snapshot!("unexpected_end_after_type", text);
+}
+
+#[test]
 fn unclosed_brace() {
     let (codes, text) = run(&lines(&[
         "surface plastic(float Kd = 1)",
@@ -536,6 +672,49 @@ fn keyword_as_name_each_use() {
     ]));
     assert_eq!(codes, ["E0306", "E0306"]);
     insta::assert_snapshot!("keyword_as_name_each_use", text);
+}
+
+#[test]
+fn keyword_as_name_then_used() {
+    // The declaration is taken with the keyword as its name, so the use is read as a name too:
+    // one error at each, not a parse derailed at the use.
+    let (codes, text) = run(&lines(&[
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    float light = 0.5;",
+        "    Ci = Kd * Cs * light;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0306", "E0306"]);
+    insta::assert_snapshot!("keyword_as_name_then_used", text);
+}
+
+#[test]
+fn keyword_as_function_name() {
+    // A local function named by a keyword is taken as a function, so its body does not derail the
+    // shader's; the call, which reads as message passing, is its own and not reported.
+    let (codes, text) = run(&lines(&[
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    float surface(float x) { return x * Kd; }",
+        "    Ci = Cs * surface(0.5);",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0306"]);
+    insta::assert_snapshot!("keyword_as_function_name", text);
+}
+
+#[test]
+fn qualifier_after_type() {
+    let (codes, text) = run(&lines(&[
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    float uniform k = Kd;",
+        "    Ci = k * Cs;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0301"]);
+    insta::assert_snapshot!("qualifier_after_type", text);
 }
 
 #[test]
@@ -699,6 +878,81 @@ fn else_after_semicolon() {
 }
 
 #[test]
+fn else_after_semicolon_with_block() {
+    // The `else` branch is read as a statement of the block, so the shader's `}` still closes it.
+    let (codes, text) = run(&lines(&[
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    if (Kd > 0.5) { Ci = Cs; }; else { Ci = 0; }",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0314"]);
+    insta::assert_snapshot!("else_after_semicolon_with_block", text);
+}
+
+#[test]
+fn else_after_empty_statement() {
+    let (codes, text) = run(&lines(&[
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    if (Kd > 0.5) Ci = Cs;;",
+        "    else Ci = 0;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0314"]);
+    insta::assert_snapshot!("else_after_empty_statement", text);
+}
+
+#[test]
+fn else_after_statement() {
+    // The `;` ends an assignment, not an `if`: the `if` is missing, not a `;` too many.
+    let (codes, text) = run(&lines(&[
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    Ci = Cs;",
+        "    else {",
+        "        Ci = 0;",
+        "    }",
+        "    Oi = Os;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0314"]);
+    insta::assert_snapshot!("else_after_statement", text);
+}
+
+#[test]
+fn else_after_two_statements() {
+    // Braces left out: the `if` took only the first statement. The `;` is not the fault.
+    let (codes, text) = run(&lines(&[
+        "surface plastic(float Kd = 1)",
+        "{",
+        "    if (Kd > 0.5)",
+        "        Ci = Cs;",
+        "        Oi = Os;",
+        "    else",
+        "        Ci = 0;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0314"]);
+    insta::assert_snapshot!("else_after_two_statements", text);
+}
+
+#[test]
+fn independent_errors_in_text_order() {
+    // Errors the parser recovers from and problems its actions find come in the order of the text.
+    let (codes, text) = run(&lines(&[
+        "surface fog(float density = 1)",
+        "{",
+        "    float volume = 1e39;",
+        "    Ci = density * * Cs;",
+        "    Oi = 3.5e39;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0306", "E0107", "E0301", "E0107"]);
+    insta::assert_snapshot!("independent_errors_in_text_order", text);
+}
+
+#[test]
 fn brackets_nested_too_deep() {
     // Generated code: more nested blocks than the compiler accepts.
     let depth = 300;
@@ -770,6 +1024,25 @@ fn renderer_query() {
     ]));
     assert_eq!(codes, ["E0404"]);
     insta::assert_snapshot!("renderer_query", text);
+}
+
+#[test]
+fn local_function_named_like_a_builtin() {
+    // A function defined in the shader's body is the user's own, like a top-level one, but only
+    // in the body that defines it.
+    let (codes, text) = run(&lines(&[
+        "surface own(float Kd = 1)",
+        "{",
+        "    float option(float x) { return x * Kd; }",
+        "    Ci = Cs * option(0.5);",
+        "}",
+        "surface other(float Kd = 1)",
+        "{",
+        "    Ci = Cs * option(0.5);",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0404"]);
+    insta::assert_snapshot!("local_function_named_like_a_builtin", text);
 }
 
 // ---------------------------------------------------------------------------------------------

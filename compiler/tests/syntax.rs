@@ -2,8 +2,20 @@
 //! the preprocessor expands and includes as cpp would, and spans lead back to the right text.
 
 use patina_compiler::check_source;
+use patina_compiler::diag::Diagnostics;
+use patina_compiler::source::SourceMap;
 use patina_compiler::syntax::ast::*;
+use patina_compiler::syntax::parse_file;
 use patina_compiler::syntax::preprocess::{FsLoader, MemoryLoader};
+
+/// Runs the front end alone (no semantics: these snippets use undeclared names on purpose).
+fn parse(src: &str) -> (Module, Diagnostics, SourceMap) {
+    let mut sources = SourceMap::new();
+    let root = sources.add_file("t.sl", src, None);
+    let mut diags = Diagnostics::default();
+    let module = parse_file(&mut sources, root, &MemoryLoader::default(), &mut diags);
+    (module, diags, sources)
+}
 
 /// A compact rendering of an expression tree, so tests can state structure in one line.
 fn sexpr(e: &Expr) -> String {
@@ -59,9 +71,9 @@ fn sexpr(e: &Expr) -> String {
 /// Parses `x = <expr>;` inside a surface shader and renders the right-hand side.
 fn parse_expr(expr: &str) -> String {
     let src = format!("surface s() {{ x = {expr}; }}");
-    let checked = check_source("t.sl", &src, &MemoryLoader::default());
-    assert!(checked.diagnostics.is_empty(), "{expr}: {:?}", checked.diagnostics);
-    let Item::Shader(shader) = &checked.module.items[0] else { panic!("not a shader") };
+    let (module, diags, _) = parse(&src);
+    assert!(diags.is_empty(), "{expr}: {diags:?}");
+    let Item::Shader(shader) = &module.items[0] else { panic!("not a shader") };
     let StmtKind::Expr(e) = &shader.body.stmts[0].kind else { panic!("not an expression statement") };
     let ExprKind::Assign { value, .. } = &e.kind else { panic!("not an assignment") };
     sexpr(value)
@@ -355,13 +367,13 @@ fn spans_lead_back_through_includes_and_macros() {
 
 #[test]
 fn node_spans_cover_their_text() {
-    let checked = check_source("t.sl", "surface s() { x = a + b * c; }", &MemoryLoader::default());
-    let Item::Shader(s) = &checked.module.items[0] else { panic!() };
-    assert_eq!(checked.sources.text(s.body.stmts[0].span), "x = a + b * c;");
+    let (module, _, sources) = parse("surface s() { x = a + b * c; }");
+    let Item::Shader(s) = &module.items[0] else { panic!() };
+    assert_eq!(sources.text(s.body.stmts[0].span), "x = a + b * c;");
     let StmtKind::Expr(e) = &s.body.stmts[0].kind else { panic!() };
     let ExprKind::Assign { value, .. } = &e.kind else { panic!() };
-    assert_eq!(checked.sources.text(value.span), "a + b * c");
-    assert_eq!(checked.sources.text(s.span), "surface s() { x = a + b * c; }");
+    assert_eq!(sources.text(value.span), "a + b * c");
+    assert_eq!(sources.text(s.span), "surface s() { x = a + b * c; }");
 }
 
 #[test]

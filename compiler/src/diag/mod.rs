@@ -138,6 +138,13 @@ impl Diagnostics {
         self.list
     }
 
+    /// Inserts `items` before the diagnostic at `index` (at the end when `index` is the length),
+    /// for a stage that can only decide late whether diagnostics it found early stand.
+    pub fn insert(&mut self, index: usize, items: impl IntoIterator<Item = Diagnostic>) {
+        let index = index.min(self.list.len());
+        self.list.splice(index..index, items);
+    }
+
     /// Moves every diagnostic of `other` into `self`.
     pub fn extend(&mut self, other: impl IntoIterator<Item = Diagnostic>) {
         self.list.extend(other);

@@ -15,27 +15,57 @@ pub enum Format {
     Json,
 }
 
+/// At most this many macro-expansion labels, and as many include labels, are shown per diagnostic.
+const MAX_CONTEXT_LABELS: usize = 4;
+
+/// Keeps at most [`MAX_CONTEXT_LABELS`] of a chain of context labels, innermost first: the innermost
+/// ones and the outermost, which is where the user's own text starts it. Returns how many were left
+/// out.
+fn elide(chain: &mut Vec<cs::Label<FileId>>) -> usize {
+    let n = chain.len();
+    if n <= MAX_CONTEXT_LABELS {
+        return 0;
+    }
+    let outermost = chain.pop().expect("the chain is longer than the limit");
+    chain.truncate(MAX_CONTEXT_LABELS - 1);
+    chain.push(outermost);
+    n - MAX_CONTEXT_LABELS
+}
+
 /// The context labels of a span: each macro expansion it came through, then each `#include` that
-/// brought its file in.
-fn context_labels(sources: &SourceMap, span: Span) -> Vec<cs::Label<FileId>> {
-    let mut labels = Vec::new();
+/// brought its file in; long chains are cut short, with a note saying how much was left out.
+fn context_labels(sources: &SourceMap, span: Span) -> (Vec<cs::Label<FileId>>, Vec<String>) {
+    let mut expansions = Vec::new();
     let mut at = span;
     while let Some(expansion) = sources.expansion(at.expn) {
-        labels.push(
+        expansions.push(
             cs::Label::secondary(expansion.call_site.file, expansion.call_site.range())
                 .with_message(format!("in this expansion of macro `{}`", expansion.name)),
         );
         at = expansion.call_site;
     }
+    let mut includes = Vec::new();
     let mut file = at.file;
     while let Some(site) = sources.file(file).included_from {
-        labels.push(
+        includes.push(
             cs::Label::secondary(site.file, site.range())
                 .with_message(format!("`{}` included here", sources.file(file).name)),
         );
         file = site.file;
     }
-    labels
+    let mut notes = Vec::new();
+    match elide(&mut expansions) {
+        0 => {}
+        1 => notes.push("... and 1 more expansion".to_string()),
+        n => notes.push(format!("... and {n} more expansions")),
+    }
+    match elide(&mut includes) {
+        0 => {}
+        1 => notes.push("... and 1 more include".to_string()),
+        n => notes.push(format!("... and {n} more includes")),
+    }
+    expansions.extend(includes);
+    (expansions, notes)
 }
 
 /// The codespan-reporting form of a diagnostic, with include and expansion sites added.
@@ -49,8 +79,9 @@ pub fn to_codespan(sources: &SourceMap, d: &Diagnostic) -> cs::Diagnostic<FileId
         let style = if label.primary { cs::LabelStyle::Primary } else { cs::LabelStyle::Secondary };
         labels.push(cs::Label::new(style, label.span.file, label.span.range()).with_message(&label.message));
     }
-    labels.extend(context_labels(sources, d.primary_span()));
-    let mut notes: Vec<String> = d.notes.iter().map(|n| format!("note: {n}")).collect();
+    let (context, elided) = context_labels(sources, d.primary_span());
+    labels.extend(context);
+    let mut notes: Vec<String> = d.notes.iter().chain(&elided).map(|n| format!("note: {n}")).collect();
     if let Some(help) = &d.help {
         notes.push(format!("help: {help}"));
     }
@@ -120,7 +151,7 @@ pub fn render_json(sources: &SourceMap, diagnostics: &[Diagnostic]) -> String {
             "message": d.message,
             "location": location(sources, d.primary_span()),
             "labels": labels,
-            "notes": d.notes,
+            "notes": d.notes.iter().chain(&context_labels(sources, d.primary_span()).1).collect::<Vec<_>>(),
             "help": d.help,
         });
         out.push_str(&value.to_string());

@@ -75,24 +75,22 @@ pub fn check(module: &ast::Module, diags: &mut Diagnostics) -> Program {
         .filter_map(|i| if let Item::Variable(v) = i { Some(&**v) } else { None })
         .collect();
     let mut program = Program::default();
-    let mut called_somewhere = false;
+    let mut shared = lower::Shared::default();
     for item in &module.items {
-        if let Item::Shader(s) = item {
-            called_somewhere = true;
-            if let Some(mut shader) = lower::lower_shader(s, &globals, &table, diags) {
-                rates::infer(&mut shader, diags);
-                program.shaders.push(shader);
-            }
+        if let Item::Shader(s) = item
+            && let Some(mut shader) = lower::lower_shader(s, &globals, &table, &mut shared, diags)
+        {
+            rates::infer(&mut shader, diags);
+            program.shaders.push(shader);
         }
     }
-    // Functions are checked where they are inlined; a module of functions only (a library) is
-    // checked function by function.
-    if !called_somewhere {
-        for overloads in table.values() {
-            for f in overloads {
-                lower::check_function(f, &table, diags);
-            }
-        }
+    // Functions are checked where they are inlined; the ones no shader calls (all of them, in a
+    // library module) are checked on their own so that their errors are reported too.
+    let mut unused: Vec<&ast::FunctionDef> =
+        table.values().flatten().copied().filter(|f| !shared.inlined.contains(&f.span)).collect();
+    unused.sort_by_key(|f| (f.span.file, f.span.start));
+    for f in unused {
+        lower::check_function(f, &table, &mut shared, diags);
     }
     program
 }

@@ -117,8 +117,9 @@ impl Analysis<'_> {
             ExprKind::Literal(_) => (Rate::CONSTANT, Origin { span, why: Why::Constant }),
             ExprKind::Local(l) => {
                 let local = &self.shader.locals[l.0 as usize];
+                // A declared variable's rate comes from its declaration: point there.
                 let origin = if local.declared {
-                    Origin { span, why: Why::Declared }
+                    Origin { span: local.span, why: Why::Declared }
                 } else {
                     self.local_origins[l.0 as usize]
                 };
@@ -199,7 +200,7 @@ impl Analysis<'_> {
                         None => (control, control_origin),
                     };
                     // A loop left under a varying condition runs a varying number of times.
-                    if let Some((rate, span)) = self.exit_conditions(body) {
+                    if let Some((rate, span)) = self.exit_conditions(body, 0) {
                         if rate.frequency > inner.frequency {
                             origin = Some(span);
                         }
@@ -210,7 +211,7 @@ impl Analysis<'_> {
                 }
                 Stmt::Inline { body, .. } => {
                     let (mut inner, mut origin) = (control, control_origin);
-                    if let Some((rate, span)) = self.exit_conditions(body) {
+                    if let Some((rate, span)) = self.exit_conditions(body, u32::MAX) {
                         if rate.frequency > inner.frequency {
                             origin = Some(span);
                         }
@@ -247,33 +248,53 @@ impl Analysis<'_> {
         (control.join(Rate { perlight: false, ..r }), origin)
     }
 
-    /// The highest rate of the conditions under which `block` is left early (`break`, `continue`,
-    /// `return`), with the span of that condition.
-    fn exit_conditions(&self, block: &Block) -> Option<(Rate, Span)> {
-        fn exits(block: &Block) -> bool {
+    /// The highest rate of the conditions under which control leaves a construct early, with the
+    /// span of that condition. `block` is the construct's body or part of it, `loops` the loops
+    /// between it and the construct: `break n` and `continue n` leave the construct when `n` is
+    /// more than that, and `return` always does. (An inlined body passes `u32::MAX`: only `return`
+    /// leaves it.)
+    fn exit_conditions(&self, block: &Block, loops: u32) -> Option<(Rate, Span)> {
+        fn exits(block: &Block, loops: u32) -> bool {
             block.iter().any(|s| match s {
-                Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => true,
-                Stmt::If { then, otherwise, .. } => exits(then) || exits(otherwise),
-                Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => exits(body),
-                _ => false,
+                Stmt::Break(n) | Stmt::Continue(n) => *n > loops,
+                Stmt::Return => true,
+                Stmt::If { then, otherwise, .. } => exits(then, loops) || exits(otherwise, loops),
+                Stmt::Loop { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                    exits(body, loops.saturating_add(1))
+                }
+                Stmt::Inline { .. } | Stmt::Store { .. } | Stmt::Eval(_) => false,
             })
+        }
+        fn consider(best: &mut Option<(Rate, Span)>, found: Option<(Rate, Span)>) {
+            if let Some((r, span)) = found
+                && best.is_none_or(|(b, _)| r.frequency > b.frequency)
+            {
+                *best = Some((r, span));
+            }
         }
         let mut best: Option<(Rate, Span)> = None;
         for s in block {
-            if let Stmt::If { cond, then, otherwise } = s {
-                if exits(then) || exits(otherwise) {
-                    let r = self.rate(*cond);
-                    if best.is_none_or(|(b, _)| r.frequency > b.frequency) {
-                        best = Some((r, self.shader.exprs[cond.0 as usize].span));
+            match s {
+                Stmt::If { cond, then, otherwise } => {
+                    if exits(then, loops) || exits(otherwise, loops) {
+                        consider(&mut best, Some((self.rate(*cond), self.shader.exprs[cond.0 as usize].span)));
                     }
+                    consider(&mut best, self.exit_conditions(then, loops));
+                    consider(&mut best, self.exit_conditions(otherwise, loops));
                 }
-                for inner in [then, otherwise] {
-                    if let Some((r, span)) = self.exit_conditions(inner)
-                        && best.is_none_or(|(b, _)| r.frequency > b.frequency)
+                Stmt::Loop { cond, body, .. } => {
+                    let inner = loops.saturating_add(1);
+                    if let Some(c) = cond
+                        && exits(body, inner)
                     {
-                        best = Some((r, span));
+                        consider(&mut best, Some((self.rate(*c), self.shader.exprs[c.0 as usize].span)));
                     }
+                    consider(&mut best, self.exit_conditions(body, inner));
                 }
+                Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                    consider(&mut best, self.exit_conditions(body, loops.saturating_add(1)));
+                }
+                _ => {}
             }
         }
         best
@@ -325,6 +346,15 @@ impl Analysis<'_> {
 
     fn report(&mut self, diags: &mut Diagnostics) {
         let stanford = self.shader.stanford;
+        // RenderMan users think in uniform and varying; Stanford users in the four rates.
+        let word = |rate: Rate| -> String {
+            match (stanford, rate.frequency) {
+                (true, _) => rate.to_string(),
+                (false, Frequency::Constant) => "constant".into(),
+                (false, Frequency::PrimitiveGroup) => "uniform".into(),
+                (false, Frequency::Vertex | Frequency::Fragment) => "varying".into(),
+            }
+        };
         // Parameter defaults are evaluated on the host, once per draw.
         for p in self.shader.params.clone() {
             let local = &self.shader.locals[p.0 as usize];
@@ -332,18 +362,19 @@ impl Analysis<'_> {
                 let rate = self.rate(d);
                 if rate.frequency > Frequency::PrimitiveGroup {
                     let origin = self.origins[d.0 as usize];
+                    let value_span = self.shader.exprs[d.0 as usize].span;
+                    let mut diag = Diagnostic::error(
+                        Code::DefaultRate,
+                        format!("the default of `{}` must be known once per draw, but it is {}", local.name, word(rate)),
+                        value_span,
+                        format!("this is {}", word(rate)),
+                    );
+                    if origin.span != value_span {
+                        diag = diag.with_label(origin.span, format!("{} because of this", word(rate)));
+                    }
                     diags.push(
-                        Diagnostic::error(
-                            Code::DefaultRate,
-                            format!(
-                                "the default of `{}` must be known once per draw, but it is {rate}",
-                                local.name
-                            ),
-                            self.shader.exprs[d.0 as usize].span,
-                            format!("this is {rate}"),
-                        )
-                        .with_label(origin.span, format!("{rate} because of this"))
-                        .with_note("defaults are computed on the host before drawing"),
+                        diag.with_note("defaults are computed on the host before drawing")
+                            .with_help("use constants and other parameters here; compute per-point values in the body"),
                     );
                 }
             }
@@ -353,83 +384,81 @@ impl Analysis<'_> {
             let (name, declared, decl_span, is_result) = match target {
                 Target::Local(l) => {
                     let local = &self.shader.locals[l.0 as usize];
-                    if !local.declared && !(stanford && Some(l) == self.shader.result_local) {
+                    let is_result = Some(l) == self.shader.result_local;
+                    if !local.declared && !(stanford && is_result) {
                         continue;
                     }
-                    let declared =
-                        if Some(l) == self.shader.result_local { Rate::FRAGMENT } else { local.rate };
-                    (local.name.to_string(), declared, local.span, Some(l) == self.shader.result_local)
+                    let declared = if is_result { Rate::FRAGMENT } else { local.rate };
+                    (local.name.to_string(), declared, local.span, is_result)
                 }
-                Target::Global(g) => (
-                    g.name.to_string(),
-                    Rate { frequency: Frequency::Fragment, perlight: g.perlight },
-                    span,
-                    false,
-                ),
+                Target::Global(g) => {
+                    (g.name.to_string(), Rate { frequency: Frequency::Fragment, perlight: g.perlight }, span, false)
+                }
             };
             let mut value_rate = self.rate(value);
-            let light_stripped = !stanford && value_rate.perlight && !declared.perlight;
-            if light_stripped {
-                // Checked by scope rules instead: RenderMan per-light values only exist in illuminance.
+            if !stanford && value_rate.perlight && !declared.perlight {
+                // RenderMan per-light values exist only inside illuminance, where stores accumulate.
                 value_rate.perlight = false;
             }
             let origin = self.origins[value.0 as usize];
             let value_span = self.shader.exprs[value.0 as usize].span;
-            if !seen.insert((value_span, span)) {
+            if !seen.insert((value_span, span, name.clone())) {
                 continue;
             }
+            // The origin earns its own label only where it is not the value itself.
+            let origin_label = (origin.span != value_span).then_some(origin.span);
+            let with_origin = |d: Diagnostic, text: String| match origin_label {
+                Some(at) => d.with_label(at, text),
+                None => d,
+            };
             if value_rate.perlight && !declared.perlight {
                 let what = if is_result { "the shader's result".to_string() } else { format!("`{name}`") };
+                let d = Diagnostic::error(
+                    Code::PerlightEscape,
+                    format!("a per-light value cannot be stored in {what}"),
+                    value_span,
+                    "one value per light",
+                );
                 diags.push(
-                    Diagnostic::error(
-                        Code::PerlightEscape,
-                        format!("a per-light value cannot be stored in {what}"),
-                        value_span,
-                        "one value per light",
-                    )
-                    .with_label(origin.span, "per-light because of this")
-                    .with_help("sum it over the lights with `integrate(...)`"),
+                    with_origin(d, "per-light because of this".into()).with_help("sum it over the lights with `integrate(...)`"),
                 );
                 continue;
             }
             if !value_rate.fits_in(declared) {
                 let mut d = if origin.why == Why::Derivative {
-                    Diagnostic::error(
+                    let d = Diagnostic::error(
                         Code::DerivativeRate,
-                        format!(
-                            "a screen-space derivative cannot be stored in `{name}`, declared {declared}"
-                        ),
+                        format!("a screen-space derivative cannot be stored in `{name}`, declared {}", word(declared)),
                         value_span,
                         "derivatives exist only per fragment",
-                    )
-                    .with_label(origin.span, "this derivative is per fragment")
+                    );
+                    with_origin(d, "this derivative is per fragment".into()).with_help(format!(
+                        "declare `{name}` {} (or leave its rate out); only derivatives of constant or per-draw \
+                         values, which are 0, are allowed at lower rates",
+                        if stanford { "fragment" } else { "varying" }
+                    ))
                 } else if !stanford {
-                    Diagnostic::error(
+                    let d = Diagnostic::error(
                         Code::VaryingToUniform,
                         format!("cannot assign a varying value to the uniform variable `{name}`"),
                         value_span,
-                        format!("this value is varying ({})", value_rate.frequency.name()),
-                    )
-                    .with_label(origin.span, "varying because of this")
+                        "this value is varying",
+                    );
+                    with_origin(d, "varying because of this".into())
+                        .with_help(format!("declare `{name}` varying, or compute it from uniform values only"))
                 } else {
-                    Diagnostic::error(
+                    let d = Diagnostic::error(
                         Code::RateTooHigh,
-                        format!(
-                            "cannot store a {} value in `{name}`, declared {declared}",
-                            value_rate.frequency.name()
-                        ),
+                        format!("cannot store a {} value in `{name}`, declared {declared}", word(value_rate)),
                         value_span,
-                        format!("this value is {}", value_rate.frequency.name()),
-                    )
-                    .with_label(origin.span, format!("{} because of this", value_rate.frequency.name()))
-                };
-                d = d.with_label(decl_span, format!("`{name}` is declared {declared} here"));
-                if stanford && origin.why != Why::Derivative {
-                    d = d.with_help(format!(
+                        format!("this value is {}", word(value_rate)),
+                    );
+                    with_origin(d, format!("{} because of this", word(value_rate))).with_help(format!(
                         "declare `{name}` {} or leave its rate out to let it be inferred",
                         value_rate.frequency.name()
-                    ));
-                }
+                    ))
+                };
+                d = d.with_label(decl_span, format!("`{name}` is declared {} here", word(declared)));
                 diags.push(d);
                 continue;
             }
@@ -438,26 +467,27 @@ impl Analysis<'_> {
                 diags.push(
                     Diagnostic::error(
                         Code::ControlDependence,
-                        format!(
-                            "`{name}` is declared {declared} but assigned under a {} condition",
-                            control.frequency.name()
-                        ),
+                        format!("`{name}` is declared {} but assigned under a {} condition", word(declared), word(control)),
                         span,
-                        format!("this assignment happens per {}", control.frequency.name()),
+                        format!("whether this assignment happens is {}", word(control)),
                     )
-                    .with_label(condition, format!("this condition is {}", control.frequency.name()))
-                    .with_label(decl_span, format!("`{name}` is declared {declared} here")),
+                    .with_label(condition, format!("this condition is {}", word(control)))
+                    .with_label(decl_span, format!("`{name}` is declared {} here", word(declared)))
+                    .with_help(format!(
+                        "declare `{name}` {}, or make the condition {}",
+                        if stanford { control.frequency.name() } else { "varying" },
+                        word(declared)
+                    )),
                 );
             }
         }
         // `integrate` of a value that is the same for every light is almost certainly a mistake.
-        for (i, e) in self.shader.exprs.iter().enumerate() {
+        for e in &self.shader.exprs {
             if let ExprKind::Builtin(b, args) = &e.kind
                 && b.rate == RateRule::Integrate
                 && let Some(&arg) = args.first()
                 && !self.shader.exprs[arg.0 as usize].rate.perlight
             {
-                let _ = i;
                 diags.push(
                     Diagnostic::warning(
                         Code::IntegrateNotPerlight,

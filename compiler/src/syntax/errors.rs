@@ -11,7 +11,7 @@ use super::lexer::Token;
 use super::parser::Never;
 use super::token::TokenKind;
 use crate::diag::{Code, Diagnostic};
-use crate::source::SourceMap;
+use crate::source::{ExpnId, SourceMap, Span};
 
 /// Terminals that can start an expression, as the grammar names them.
 const EXPRESSION_STARTS: &[&str] = &[
@@ -35,6 +35,35 @@ const EXPRESSION_STARTS: &[&str] = &[
 const OPERATORS: &[&str] = &[
     "+", "-", "*", "/", "%", "^", ".", "&", "|", "&&", "||", "<", ">", "<=", ">=", "==", "!=", "<<", ">>",
     "?", "[", "=", "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", "<<=", ">>=", "++", "--",
+];
+
+/// Words that are names wherever a name is expected: RenderMan's type words, and the keywords the
+/// grammar takes as names after reporting them. When a name is expected, "a name" covers them.
+const NAME_WORDS: &[&str] = &[
+    "color",
+    "point",
+    "vector",
+    "normal",
+    "matrix",
+    "string",
+    "surface",
+    "light",
+    "displacement",
+    "volume",
+    "imager",
+    "shader",
+    "uniform",
+    "varying",
+    "output",
+    "extern",
+    "constant",
+    "vertex",
+    "fragment",
+    "perlight",
+    "illuminance",
+    "illuminate",
+    "solar",
+    "gather",
 ];
 
 /// Words that begin a type.
@@ -89,7 +118,8 @@ fn summarise(expected: &[String]) -> String {
     let names: Vec<&str> = expected.iter().map(|e| unquote(e)).collect();
     let has = |n: &str| names.contains(&n);
     let mut parts: Vec<String> = Vec::new();
-    let expression = has("identifier") && has("integer literal") && has("(");
+    let name = has("identifier");
+    let expression = name && has("integer literal") && has("(");
     let operator = has("*") && has("+");
     let type_name = has("float") && has("color") && has("float4");
     if expression {
@@ -100,13 +130,19 @@ fn summarise(expected: &[String]) -> String {
             || (operator && OPERATORS.contains(n))
             || (type_name && TYPES.contains(n))
             || (expression && TYPES.contains(n))
-            || (expression && matches!(*n, "surface" | "light" | "displacement" | "volume" | "imager"));
-        if !covered {
-            parts.push(if n.contains(' ') && !n.starts_with("primitive") {
-                (*n).to_string()
-            } else {
-                format!("`{n}`")
-            });
+            || (name && NAME_WORDS.contains(n));
+        if covered {
+            continue;
+        }
+        // Token classes are said in words, everything else as it is written.
+        let part = match *n {
+            "identifier" => "a name".to_string(),
+            "integer literal" | "float literal" => "a number".to_string(),
+            "string literal" => "a string".to_string(),
+            _ => format!("`{n}`"),
+        };
+        if !parts.contains(&part) {
+            parts.push(part);
         }
     }
     if type_name && !expression {
@@ -172,33 +208,34 @@ fn unexpected(at: usize, expected: &[String], tokens: &[Token], sources: &Source
         );
     }
     if tok.kind == TokenKind::Else {
-        let mut d = Diagnostic::error(
-            Code::ElseWithoutIf,
-            "`else` without a matching `if`",
-            tok.span,
-            "no `if` to attach to",
-        );
-        if let Some(p) = prev.filter(|p| p.kind == TokenKind::Semi) {
-            d = d
-                .with_label(p.span, "this `;` ends the statement before the `else`")
-                .with_help("an `if` whose body is a block takes no `;` before `else`");
-        }
-        return d;
+        return else_without_if(at, tokens);
     }
     if let Some(d) = stray_brace(at, tokens, sources) {
         return d;
     }
     if tok.kind.is_keyword() && expects("identifier") && !expects(text) {
-        return Diagnostic::error(
-            Code::ReservedWord,
-            format!("expected a name, found keyword `{text}`"),
-            tok.span,
-            "keywords cannot be used as names",
-        )
-        .with_help(format!("rename it, e.g. `{text}_`"));
+        return keyword_as_name(tok, text);
     }
+    // `float uniform x`: the grammar took the qualifier for a misused name; the fault is its place.
+    if let Some(q) = prev.filter(|p| is_qualifier(p.kind))
+        && at >= 2
+        && TYPES.contains(&tokens[at - 2].kind.spelling().unwrap_or(""))
+        && tok.kind == TokenKind::Ident
+    {
+        let (qualifier, ty) = (sources.text(q.span), sources.text(tokens[at - 2].span));
+        return Diagnostic::error(
+            Code::UnexpectedToken,
+            format!("qualifier `{qualifier}` after the type"),
+            q.span,
+            format!("`{qualifier}` must come before `{ty}`"),
+        )
+        .with_help(format!("write `{qualifier} {ty} {text}`"));
+    }
+    // Where the `;` goes: after the previous token, or after the use of the macro that produced it
+    // when the next token is not from that macro too.
+    let before = prev.map(|p| Token { span: outside_expansion(sources, p.span, tok.span), ..p });
     if expects(";")
-        && let Some(p) = prev
+        && let Some(p) = before
         && (tok.kind == TokenKind::RBrace || line_of(sources, p) < line_of(sources, tok))
     {
         return Diagnostic::error(
@@ -216,6 +253,98 @@ fn unexpected(at: usize, expected: &[String], tokens: &[Token], sources: &Source
         format!("expected {}, found {found}", summarise(expected))
     };
     Diagnostic::error(Code::UnexpectedToken, message, tok.span, format!("unexpected {found}"))
+}
+
+/// `span` lifted out of each macro expansion that `other` is not also inside.
+fn outside_expansion(sources: &SourceMap, mut span: Span, other: Span) -> Span {
+    let mut shared = vec![ExpnId::ROOT];
+    let mut at = other;
+    while let Some(e) = sources.expansion(at.expn) {
+        shared.push(at.expn);
+        at = e.call_site;
+    }
+    while !shared.contains(&span.expn) {
+        span = sources.call_site(span);
+    }
+    span
+}
+
+/// `else` where no `if` can take it. The `;` before it gets a label when it is the culprit: a
+/// statement of its own right after a complete `if` (`if (c) { ... }; else`).
+pub fn else_without_if(at: usize, tokens: &[Token]) -> Diagnostic {
+    let mut d = Diagnostic::error(
+        Code::ElseWithoutIf,
+        "`else` without a matching `if`",
+        tokens[at].span,
+        "no `if` to attach to",
+    );
+    if let Some(semi) = at.checked_sub(1).filter(|&i| tokens[i].kind == TokenKind::Semi)
+        && let Some(last) = semi.checked_sub(1)
+        && matches!(tokens[last].kind, TokenKind::RBrace | TokenKind::Semi)
+        && let Some(start) = statement_start(tokens, last)
+        && tokens[start].kind == TokenKind::If
+    {
+        let help = if tokens[last].kind == TokenKind::RBrace {
+            "an `if` whose body is a block takes no `;` before `else`"
+        } else {
+            "the `if` statement already ends with the `;` before this one; remove this one"
+        };
+        d = d.with_label(tokens[semi].span, "this `;` ends the statement before the `else`").with_help(help);
+    }
+    d
+}
+
+/// Where the statement whose last token is `tokens[last]` starts; `None` when it already has an
+/// `else` of its own (so that no `;` could be what keeps an `else` from it). Brackets are balanced:
+/// the parser runs only then.
+fn statement_start(tokens: &[Token], last: usize) -> Option<usize> {
+    let mut i = last;
+    loop {
+        if matches!(tokens[i].kind, TokenKind::RParen | TokenKind::RBracket | TokenKind::RBrace) {
+            i = opener(tokens, i)?;
+        }
+        if i == 0 || matches!(tokens[i - 1].kind, TokenKind::LBrace | TokenKind::RBrace | TokenKind::Semi) {
+            return Some(i);
+        }
+        i -= 1;
+        if tokens[i].kind == TokenKind::Else {
+            return None;
+        }
+    }
+}
+
+/// The index of the bracket that the closer at `close` closes.
+fn opener(tokens: &[Token], close: usize) -> Option<usize> {
+    let mut depth = 0usize;
+    for i in (0..=close).rev() {
+        match tokens[i].kind {
+            TokenKind::RParen | TokenKind::RBracket | TokenKind::RBrace => depth += 1,
+            TokenKind::LParen | TokenKind::LBracket | TokenKind::LBrace => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(i);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// A keyword where a name belongs.
+pub fn keyword_as_name(tok: Token, text: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::ReservedWord,
+        format!("expected a name, found keyword `{text}`"),
+        tok.span,
+        "keywords cannot be used as names",
+    )
+    .with_help(format!("rename it, e.g. `{text}_`"))
+}
+
+fn is_qualifier(kind: TokenKind) -> bool {
+    use TokenKind::*;
+    matches!(kind, Uniform | Varying | Output | Extern | Constant | Vertex | Fragment | Perlight)
 }
 
 fn line_of(sources: &SourceMap, t: Token) -> usize {

@@ -4,7 +4,7 @@
 
 use std::cell::RefCell;
 
-use lalrpop_util::{ErrorRecovery, ParseError};
+use lalrpop_util::ErrorRecovery;
 use smol_str::SmolStr;
 
 use super::ast::*;
@@ -47,12 +47,15 @@ pub enum ParamItem {
     Continued(Box<Declarator>),
 }
 
+/// The parts of `for (init; cond; step)`, each optional.
+pub type ForHeader = (Option<Box<Stmt>>, Option<Expr>, Option<Expr>);
+
 /// The header of a statement that takes a body: `while`, `for`, `illuminance`, ...
 pub enum LoopHead {
     /// `while (cond)`.
     While(Expr),
     /// `for (init; cond; step)`.
-    For(Box<(Option<Box<Stmt>>, Option<Expr>, Option<Expr>)>),
+    For(Box<ForHeader>),
     /// `illuminance(args)`.
     Illuminance(Vec<Expr>),
     /// `illuminate(args)`.
@@ -66,7 +69,6 @@ pub struct Ctx<'a> {
     tokens: &'a [Token],
     sources: &'a SourceMap,
     reported: RefCell<Vec<Diagnostic>>,
-    recovered: RefCell<Vec<Recovered>>,
 }
 
 impl Ctx<'_> {
@@ -88,9 +90,10 @@ impl Ctx<'_> {
         self.reported.borrow_mut().push(d);
     }
 
-    /// Records a syntax error the grammar recovered from.
+    /// Reports a syntax error the grammar recovered from. Like the problems actions find, it is
+    /// reported when the parse gets there, so diagnostics come in the order of the text.
     pub fn recover(&self, e: Recovered) {
-        self.recovered.borrow_mut().push(e);
+        self.report(errors::to_diagnostic(&e.error, self.tokens, self.sources));
     }
 
     /// The identifier at token `i`.
@@ -118,9 +121,24 @@ impl Ctx<'_> {
         Box::new(self.stmt(l, r, kind))
     }
 
-    /// The statements of a block, out of the boxes the grammar keeps them in.
-    pub fn unbox(&self, stmts: Vec<Box<Stmt>>) -> Vec<Stmt> {
-        stmts.into_iter().map(|s| *s).collect()
+    /// The statements of a block, out of the boxes the grammar keeps them in (a statement after a
+    /// stray `else` comes second in its pair).
+    pub fn unbox(&self, stmts: Vec<(Box<Stmt>, Option<Box<Stmt>>)>) -> Vec<Stmt> {
+        stmts
+            .into_iter()
+            .flat_map(|(s, after_else)| std::iter::once(*s).chain(after_else.map(|s| *s)))
+            .collect()
+    }
+
+    /// Reports the `else` at token `i`, which follows a statement that is not an `if`.
+    pub fn stray_else(&self, i: usize) {
+        self.report(errors::else_without_if(i, self.tokens));
+    }
+
+    /// The keyword at token `i`, used as a name: reported, and taken as the name.
+    pub fn keyword_as_name(&self, i: usize) -> Ident {
+        self.report(errors::keyword_as_name(self.tokens[i], self.text(i)));
+        self.ident(i)
     }
 
     /// A statement made of a loop header and its body.
@@ -169,7 +187,8 @@ impl Ctx<'_> {
         let text = self.text(i);
         let digits = text.strip_suffix(['f', 'F']).unwrap_or(text);
         let value: f64 = digits.parse().unwrap_or(0.0);
-        if value.is_finite() && value.abs() > f64::from(f32::MAX) || value.is_infinite() {
+        // Parsed straight to f32, so that the rounding is f32's own (not f64's, then f32's).
+        if digits.parse::<f32>().is_ok_and(f32::is_infinite) {
             self.report(
                 Diagnostic::error(
                     Code::FloatTooLarge,
@@ -340,21 +359,16 @@ pub fn parse(tokens: &[Token], sources: &SourceMap, diags: &mut Diagnostics) -> 
         diags.extend(delimiter_errors);
         return Module::default();
     }
-    let ctx = Ctx { tokens, sources, reported: RefCell::default(), recovered: RefCell::default() };
+    let ctx = Ctx { tokens, sources, reported: RefCell::default() };
     let input = tokens.iter().enumerate().map(|(i, t)| Ok::<_, Never>((i, t.kind, i + 1)));
     let result = grammar::ModuleParser::new().parse(&ctx, input);
-    let mut syntax_errors: Vec<ParseError<usize, TokenKind, Never>> =
-        ctx.recovered.take().into_iter().map(|r| r.error).collect();
     let module = match result {
         Ok(module) => module,
         Err(e) => {
-            syntax_errors.push(e);
+            ctx.report(errors::to_diagnostic(&e, tokens, sources));
             Module::default()
         }
     };
-    for e in syntax_errors {
-        diags.push(errors::to_diagnostic(&e, tokens, sources));
-    }
     diags.extend(ctx.reported.take());
     module
 }

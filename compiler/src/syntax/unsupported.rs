@@ -1,8 +1,6 @@
 //! RenderMan features Patina does not support, named in a diagnostic rather than left to fail later
 //! as unknown functions: ray tracing, message passing between shaders, `gather`, renderer queries.
 
-use rustc_hash::FxHashSet;
-
 use super::ast::*;
 use crate::diag::{Code, Diagnostic, Diagnostics};
 
@@ -29,12 +27,13 @@ fn classify(name: &str) -> Option<(Code, &'static str, &'static str)> {
 }
 
 /// Reports every use of an unsupported feature in `module`. A function the module defines itself
-/// with such a name is the user's own and is left alone.
+/// with such a name, at the top level or locally in a body around the call, is the user's own and is
+/// left alone.
 pub fn check(module: &Module, diags: &mut Diagnostics) {
-    let mut defined = FxHashSet::default();
+    let mut defined = Vec::new();
     for item in &module.items {
         if let Item::Function(f) = item {
-            defined.insert(f.name.name.as_str());
+            defined.push(f.name.name.as_str());
         }
     }
     let mut walker = Walker { defined, diags };
@@ -52,20 +51,28 @@ pub fn check(module: &Module, diags: &mut Diagnostics) {
 }
 
 struct Walker<'a> {
-    defined: FxHashSet<&'a str>,
+    /// The functions in scope: the top-level ones, then those of each enclosing block.
+    defined: Vec<&'a str>,
     diags: &'a mut Diagnostics,
 }
 
-impl Walker<'_> {
-    fn block(&mut self, b: &Block) {
+impl<'a> Walker<'a> {
+    fn block(&mut self, b: &'a Block) {
+        let outer = self.defined.len();
+        for s in &b.stmts {
+            if let StmtKind::Function(f) = &s.kind {
+                self.defined.push(f.name.name.as_str());
+            }
+        }
         b.stmts.iter().for_each(|s| self.stmt(s));
+        self.defined.truncate(outer);
     }
 
-    fn decl(&mut self, d: &VarDecl) {
+    fn decl(&mut self, d: &'a VarDecl) {
         d.declarators.iter().filter_map(|d| d.init.as_ref()).for_each(|e| self.expr(e));
     }
 
-    fn stmt(&mut self, s: &Stmt) {
+    fn stmt(&mut self, s: &'a Stmt) {
         match &s.kind {
             StmtKind::Block(b) => self.block(b),
             StmtKind::Decl(d) => self.decl(d),
@@ -108,10 +115,10 @@ impl Walker<'_> {
         }
     }
 
-    fn expr(&mut self, e: &Expr) {
+    fn expr(&mut self, e: &'a Expr) {
         match &e.kind {
             ExprKind::Call { callee, args } => {
-                if !self.defined.contains(callee.name.as_str())
+                if !self.defined.contains(&callee.name.as_str())
                     && let Some((code, feature, why)) = classify(&callee.name)
                 {
                     self.diags.push(
@@ -122,7 +129,7 @@ impl Walker<'_> {
                                 callee.name
                             ),
                             callee.span,
-                            format!("{feature} is not available"),
+                            "not available in Patina",
                         )
                         .with_note(why),
                     );

@@ -252,7 +252,11 @@ impl Lowerer<'_> {
                     "several overloads fit equally well",
                 )
                 .with_note(format!("the candidates are:\n{}", list(&mut best.iter())))
-                .with_help("convert an argument, or cast the result to the type you want: `color noise(P)`"),
+                .with_help(if best.iter().any(|c| c.ret() != best[0].ret()) {
+                    "cast the result to the type you want, as in `color noise(P)`, or convert an argument"
+                } else {
+                    "convert an argument to the parameter type of the overload you want"
+                }),
             );
             return None;
         }

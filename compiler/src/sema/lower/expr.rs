@@ -14,20 +14,27 @@ pub const SPACES: &[&str] =
 /// The colour spaces colours can be given in.
 pub const COLOR_SPACES: &[&str] = &["rgb", "hsv", "hsl", "xyz", "XYZ", "xyY", "YIQ"];
 
-/// Edit distance, for "did you mean" suggestions.
+/// Edit distance counting a swap of neighbours as one edit (optimal string alignment), for "did
+/// you mean" suggestions.
 fn distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(row[j + 1] + 1);
-            prev = cur;
+    let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for j in 0..=b.len() {
+        d[0][j] = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            d[i][j] = (d[i - 1][j] + 1).min(d[i][j - 1] + 1).min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d[i][j] = d[i][j].min(d[i - 2][j - 2] + 1);
+            }
         }
     }
-    row[b.len()]
+    d[a.len()][b.len()]
 }
 
 /// The closest of `candidates` to `name`, if it is close enough to be a likely typo.
@@ -702,9 +709,19 @@ impl Lowerer<'_> {
                 return None;
             }
         };
-        if let (Some(len), ExprKind::Literal(Literal::Int(i))) =
-            (bt.array.filter(|n| *n > 0), &self.expr_ref(index).kind)
-            && (*i < 0 || *i as u32 >= len)
+        // A constant index (a literal, possibly negated) is checked against the array's length.
+        let constant = match &self.expr_ref(index).kind {
+            ExprKind::Literal(Literal::Int(i)) => Some(i64::from(*i)),
+            ExprKind::Literal(Literal::Uint(i)) => Some(i64::from(*i)),
+            ExprKind::Unary(UnaryOp::Neg, inner) => match self.expr_ref(*inner).kind {
+                ExprKind::Literal(Literal::Int(i)) => Some(-i64::from(i)),
+                ExprKind::Literal(Literal::Uint(i)) => Some(-i64::from(i)),
+                _ => None,
+            },
+            _ => None,
+        };
+        if let (Some(len), Some(i)) = (bt.array.filter(|n| *n > 0), constant)
+            && (i < 0 || i >= i64::from(len))
         {
             self.error(Diagnostic::error(
                 Code::InvalidIndex,

@@ -43,10 +43,21 @@ struct Frame {
     call_span: Span,
 }
 
+/// What lowering keeps across the shaders and functions of one module.
+#[derive(Default)]
+pub(super) struct Shared {
+    /// Diagnostics already reported: a function's body is lowered at every call.
+    reported: FxHashSet<(Code, Span, String)>,
+    /// The functions inlined somewhere (the others are checked on their own).
+    pub(super) inlined: FxHashSet<Span>,
+}
+
 /// The state of lowering one shader.
 pub(super) struct Lowerer<'a> {
     diags: &'a mut Diagnostics,
-    reported: FxHashSet<(Code, Span, String)>,
+    shared: &'a mut Shared,
+    /// Whether an error was found in this shader (reported here or before).
+    failed: bool,
     functions: &'a FunctionTable<'a>,
     kind: ShaderKind,
     stanford: bool,
@@ -68,16 +79,17 @@ pub(super) fn lower_shader(
     shader: &ast::ShaderDef,
     globals: &[&ast::VarDecl],
     functions: &FunctionTable<'_>,
+    shared: &mut Shared,
     diags: &mut Diagnostics,
 ) -> Option<Shader> {
-    let before = diags.iter().filter(|d| d.is_error()).count();
     let (stanford, result_type) = match &shader.style {
         ShaderStyle::RenderMan => (false, Type::VOID),
         ShaderStyle::Stanford { return_type } => (true, Type::of(Base::from_ast(return_type.name))),
     };
     let mut l = Lowerer {
         diags,
-        reported: FxHashSet::default(),
+        shared,
+        failed: false,
         functions,
         kind: shader.kind,
         stanford,
@@ -114,14 +126,13 @@ pub(super) fn lower_shader(
             Diagnostic::error(
                 Code::InvalidReturn,
                 format!("shader `{}` must return a `{}`", shader.name.name, result_type),
-                shader.body.span.end_point(),
-                "the body can end without `return`",
+                Span { start: shader.body.span.end.saturating_sub(1), ..shader.body.span },
+                "the body can end here without `return`",
             )
             .with_label(shader.name.span, format!("declared to return `{result_type}`")),
         );
     }
-    let errors = l.diags.iter().filter(|d| d.is_error()).count();
-    if errors > before {
+    if l.failed {
         return None;
     }
     Some(Shader {
@@ -140,10 +151,16 @@ pub(super) fn lower_shader(
 
 /// Checks a function's body on its own, for functions no shader calls (their errors would
 /// otherwise go unreported).
-pub(super) fn check_function(f: &ast::FunctionDef, functions: &FunctionTable<'_>, diags: &mut Diagnostics) {
+pub(super) fn check_function(
+    f: &ast::FunctionDef,
+    functions: &FunctionTable<'_>,
+    shared: &mut Shared,
+    diags: &mut Diagnostics,
+) {
     let mut l = Lowerer {
         diags,
-        reported: FxHashSet::default(),
+        shared,
+        failed: false,
         functions,
         kind: f.context.map_or(ShaderKind::Surface, |c| c.0),
         stanford: false,
@@ -172,8 +189,9 @@ pub(super) fn check_function(f: &ast::FunctionDef, functions: &FunctionTable<'_>
 impl Lowerer<'_> {
     /// Reports a diagnostic once (an inlined function's body is lowered at every call).
     fn error(&mut self, d: Diagnostic) {
+        self.failed |= d.is_error();
         let key = (d.code, d.primary_span(), d.message.clone());
-        if self.reported.insert(key) {
+        if self.shared.reported.insert(key) {
             let d = match self.frames.last() {
                 Some(frame) if !d.labels.iter().any(|l| l.span == frame.call_span) => {
                     let call = frame.call_span;

@@ -70,12 +70,10 @@ impl Lowerer<'_> {
     /// Lowers a variable declaration: a local per declarator, and a store of each initialiser.
     pub(super) fn declaration(&mut self, decl: &ast::VarDecl, out: &mut Block) {
         if let Some(span) = decl.qualifiers.output {
-            self.error(Diagnostic::error(
-                Code::InvalidQualifier,
-                "only parameters can be `output`",
-                span,
-                "not a parameter",
-            ));
+            self.error(
+                Diagnostic::error(Code::InvalidQualifier, "only parameters can be `output`", span, "not a parameter")
+                    .with_help("remove `output`; a variable can always be assigned"),
+            );
         }
         for d in &decl.declarators {
             let ty = declared_type(decl.ty, d.array.as_ref());
@@ -212,15 +210,20 @@ impl Lowerer<'_> {
             StmtKind::Return(value) => self.return_stmt(value.as_ref(), s.span, out),
             StmtKind::Illuminance { args, body } => {
                 if self.kind != ast::ShaderKind::Surface || self.stanford {
-                    self.error(
-                        Diagnostic::error(
-                            Code::MisplacedStatement,
-                            "`illuminance` belongs in RenderMan-style surface shaders",
-                            s.span,
-                            "not a RenderMan surface shader",
-                        )
-                        .with_help("Stanford-style shaders sum per-light values with `integrate(...)`"),
+                    let mut d = Diagnostic::error(
+                        Code::MisplacedStatement,
+                        "`illuminance` belongs in RenderMan-style surface shaders",
+                        s.span,
+                        format!("this is {} {} shader", super::expr::article(self.kind), self.kind.keyword()),
                     );
+                    d = if self.stanford {
+                        d.with_help("Stanford-style shaders sum per-light values with `integrate(...)`")
+                    } else if self.kind == ast::ShaderKind::Light {
+                        d.with_help("a light shader emits with `illuminate (...)` or `solar (...)`")
+                    } else {
+                        d
+                    };
+                    self.error(d);
                     return;
                 }
                 let args = self.args(args, out);
@@ -274,12 +277,15 @@ impl Lowerer<'_> {
                 }
             }
             (Some(v), None) => {
-                self.error(Diagnostic::error(
-                    Code::InvalidReturn,
-                    format!("{what} returns no value"),
-                    v.span,
-                    "this value has nowhere to go",
-                ));
+                let help = if self.frames.is_empty() {
+                    "RenderMan-style shaders set `Ci` and `Oi` (or `Cl`, `P`, `N`); write `return;` to stop early"
+                } else {
+                    "declare the function with a result type, e.g. `float f(...)`"
+                };
+                self.error(
+                    Diagnostic::error(Code::InvalidReturn, format!("{what} returns no value"), v.span, "this value has nowhere to go")
+                        .with_help(help),
+                );
                 return;
             }
             (None, Some(_)) => {
@@ -304,6 +310,7 @@ impl Lowerer<'_> {
         call_span: crate::source::Span,
         out: &mut Block,
     ) -> Option<LocalId> {
+        self.shared.inlined.insert(f.span);
         let ret = declared_type(f.return_type, None);
         let result = (ret.base != Base::Void).then(|| {
             self.new_local(
@@ -348,8 +355,8 @@ impl Lowerer<'_> {
                 Diagnostic::error(
                     Code::InvalidReturn,
                     format!("function `{}` must return a `{ret}` on every path", f.name.name),
-                    f.body.span.end_point(),
-                    "the body can end without `return`",
+                    crate::source::Span { start: f.body.span.end.saturating_sub(1), ..f.body.span },
+                    "the body can end here without `return`",
                 )
                 .with_label(f.return_type.span, format!("declared to return `{ret}`")),
             );

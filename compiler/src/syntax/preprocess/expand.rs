@@ -42,6 +42,19 @@ pub struct Expander<'a> {
     pub(super) sources: &'a mut SourceMap,
     pub(super) diags: &'a mut Diagnostics,
     pub(super) produced: &'a mut usize,
+    /// Set once [`MAX_PRODUCED`] has been reported; from then on nothing is expanded.
+    pub(super) exhausted: &'a mut bool,
+}
+
+/// What a use of a macro turns into.
+enum Replacement {
+    /// These tokens, to be rescanned.
+    Tokens(Vec<Token>),
+    /// The macro's name as a plain identifier: the use was malformed and has been reported, and a
+    /// name keeps the surrounding expression well-formed.
+    Name,
+    /// Nothing: the use ran to the end of the input and has been reported.
+    Nothing,
 }
 
 fn next(frames: &mut Vec<Frame>) -> Option<Token> {
@@ -67,50 +80,78 @@ impl Expander<'_> {
     /// Expands `input`, appending the result to `out`. Macros named in `disabled` are not expanded
     /// (they are being expanded further out).
     pub fn expand(&mut self, input: Vec<Token>, disabled: &[SmolStr], out: &mut Vec<Token>) {
-        if self.macros.is_empty() {
+        if self.macros.is_empty() || *self.exhausted {
             out.extend(input);
             return;
         }
         let mut frames = vec![Frame { tokens: input, pos: 0, disabled: None }];
+        // The use of a macro written in `input` being expanded: where its output starts in `out`,
+        // and its name.
+        let mut call: Option<(usize, Token)> = None;
         while let Some(tok) = next(&mut frames) {
-            if tok.kind == TokenKind::Ident {
-                if let Some((name, mac)) = self.macros.get_key_value(self.text(tok)) {
-                    let live =
-                        !disabled.contains(name) && !frames.iter().any(|f| f.disabled.as_ref() == Some(name));
-                    if live
-                        && (mac.params.is_none()
-                            || peek(&frames).is_some_and(|t| t.kind == TokenKind::LParen))
-                    {
-                        if frames.len() > MAX_DEPTH || *self.produced > MAX_PRODUCED {
-                            self.diags.push(
-                                Diagnostic::error(
-                                    Code::ExpansionLimit,
-                                    format!("macro expansion too deep or too large while expanding `{name}`"),
-                                    tok.span,
-                                    "expansion stopped here",
-                                )
-                                .with_note(format!(
-                                    "the limits are {MAX_DEPTH} nested expansions and {MAX_PRODUCED} tokens"
-                                )),
-                            );
-                            return;
+            if tok.kind == TokenKind::Ident
+                && let Some((name, mac)) = self.macros.get_key_value(self.text(tok))
+            {
+                let live =
+                    !disabled.contains(name) && !frames.iter().any(|f| f.disabled.as_ref() == Some(name));
+                if live
+                    && (mac.params.is_none() || peek(&frames).is_some_and(|t| t.kind == TokenKind::LParen))
+                {
+                    if frames.len() == 1 {
+                        call = Some((out.len(), tok));
+                    }
+                    let too_large = *self.produced > MAX_PRODUCED;
+                    if frames.len() > MAX_DEPTH || too_large {
+                        // The whole use written in `input` stands as its bare name; the text after
+                        // it is kept (expanded as usual unless the token budget is spent).
+                        let (start, outer) = call.take().unwrap_or((out.len(), tok));
+                        if !*self.exhausted {
+                            self.limit_reached(outer, tok);
                         }
-                        let mut outer: Vec<SmolStr> = disabled.to_vec();
-                        outer.extend(frames.iter().filter_map(|f| f.disabled.clone()));
-                        if let Some(replacement) = self.replace(name, mac, tok, &mut frames, &outer) {
-                            *self.produced += replacement.len();
-                            frames.push(Frame { tokens: replacement, pos: 0, disabled: Some(name.clone()) });
+                        *self.exhausted |= too_large;
+                        out.truncate(start);
+                        out.push(outer);
+                        frames.truncate(1);
+                        if too_large {
+                            let rest = frames.pop().map(|f| f.tokens.into_iter().skip(f.pos));
+                            out.extend(rest.into_iter().flatten());
+                            return;
                         }
                         continue;
                     }
+                    let mut outer: Vec<SmolStr> = disabled.to_vec();
+                    outer.extend(frames.iter().filter_map(|f| f.disabled.clone()));
+                    match self.replace(name, mac, tok, &mut frames, &outer) {
+                        Replacement::Tokens(replacement) => {
+                            *self.produced += replacement.len();
+                            frames.push(Frame { tokens: replacement, pos: 0, disabled: Some(name.clone()) });
+                        }
+                        Replacement::Name => out.push(tok),
+                        Replacement::Nothing => {}
+                    }
+                    continue;
                 }
             }
             out.push(tok);
         }
     }
 
+    /// Reports the expansion limit, reached at `tok` while expanding the use of `outer`.
+    fn limit_reached(&mut self, outer: Token, tok: Token) {
+        let name = self.text(outer).to_string();
+        self.diags.push(
+            Diagnostic::error(
+                Code::ExpansionLimit,
+                format!("macro expansion too deep or too large while expanding `{name}`"),
+                tok.span,
+                "expansion stopped here",
+            )
+            .with_note(format!("the limits are {MAX_DEPTH} nested expansions and {MAX_PRODUCED} tokens")),
+        );
+    }
+
     /// The replacement of one use of `mac`, whose name token `name_tok` was just read; for a
-    /// function-like macro the arguments are read from `frames`. `None` when the use is malformed.
+    /// function-like macro the arguments are read from `frames`.
     fn replace(
         &mut self,
         name: &SmolStr,
@@ -118,16 +159,20 @@ impl Expander<'_> {
         name_tok: Token,
         frames: &mut Vec<Frame>,
         disabled: &[SmolStr],
-    ) -> Option<Vec<Token>> {
+    ) -> Replacement {
         let Some(params) = &mac.params else {
             let expn = self.sources.add_expansion(Expansion {
                 name: name.clone(),
                 definition: mac.name_span,
                 call_site: name_tok.span,
             });
-            return Some(mac.body.iter().map(|t| Token { span: Span { expn, ..t.span }, ..*t }).collect());
+            return Replacement::Tokens(
+                mac.body.iter().map(|t| Token { span: Span { expn, ..t.span }, ..*t }).collect(),
+            );
         };
-        let (args, close) = self.read_arguments(name, name_tok, frames)?;
+        let Some((args, close)) = self.read_arguments(name, name_tok, frames) else {
+            return Replacement::Nothing;
+        };
         let call_site = self.sources.join(name_tok.span, close.span);
         // `F()` passes one empty argument, which is right for a one-parameter macro and means
         // "no arguments" for a zero-parameter one.
@@ -149,14 +194,14 @@ impl Expander<'_> {
                 )
                 .with_label(mac.name_span, format!("`{name}` is defined here with ({})", params.join(", "))),
             );
-            return None;
+            return Replacement::Name;
         }
         let expn = self.sources.add_expansion(Expansion {
             name: name.clone(),
             definition: mac.name_span,
             call_site,
         });
-        Some(self.substitute(mac, params, &args, disabled, expn))
+        Replacement::Tokens(self.substitute(mac, params, &args, disabled, expn))
     }
 
     /// Reads `( arg, ... )` after a function-like macro's name, splitting at top-level commas.

@@ -77,10 +77,11 @@ impl SourceLoader for FsLoader {
     fn load(&self, target: &str, quoted: bool, includer: &str) -> Result<Loaded, LoadError> {
         let mut searched = Vec::new();
         let includer_dir = directory_of(includer);
-        if quoted && includer_dir == stdlib::PREFIX {
-            if let Some(found) = load_stdlib(target, &mut searched) {
-                return Ok(found);
-            }
+        if quoted
+            && includer_dir == stdlib::PREFIX
+            && let Some(found) = load_stdlib(target, &mut searched)
+        {
+            return Ok(found);
         }
         let mut candidates = Vec::new();
         if quoted && includer_dir != stdlib::PREFIX {

@@ -12,6 +12,8 @@ mod loader;
 pub use expand::Macro;
 pub use loader::{FsLoader, LoadError, Loaded, MemoryLoader, SourceLoader, read_source_file};
 
+use std::ops::Range;
+
 use rustc_hash::{FxHashMap, FxHashSet};
 use smol_str::SmolStr;
 
@@ -54,6 +56,7 @@ pub fn preprocess(
         once: FxHashSet::default(),
         out: Vec::new(),
         produced: 0,
+        exhausted: false,
     };
     pp.run_file(root, 0);
     pp.out
@@ -67,6 +70,7 @@ struct Preprocessor<'a> {
     once: FxHashSet<String>,
     out: Vec<Token>,
     produced: usize,
+    exhausted: bool,
 }
 
 fn active(conds: &[Conditional]) -> bool {
@@ -84,12 +88,19 @@ impl Preprocessor<'_> {
             sources: self.sources,
             diags: self.diags,
             produced: &mut self.produced,
+            exhausted: &mut self.exhausted,
         }
     }
 
     fn run_file(&mut self, file: FileId, depth: usize) {
         let text = self.sources.file(file).text.clone();
-        let tokens = lex(file, &text, self.diags);
+        // Lexical errors wait until it is known which text the conditionals skip: C accepts any
+        // characters there. They still come first among this file's diagnostics.
+        let mut lexical = Diagnostics::default();
+        let tokens = lex(file, &text, &mut lexical);
+        let lexical_at = self.diags.len();
+        let mut skipped: Vec<Range<u32>> = Vec::new();
+        let mut skip_start: Option<u32> = None;
         let mut conds: Vec<Conditional> = Vec::new();
         let mut run: Vec<Token> = Vec::new();
         let mut i = 0;
@@ -101,7 +112,17 @@ impl Preprocessor<'_> {
                     .position(|t| t.kind == TokenKind::Newline)
                     .map_or(tokens.len(), |n| i + n);
                 self.flush(&mut run);
+                let was_active = active(&conds);
                 self.directive(t, &tokens[i + 1..end], &mut conds, file, depth);
+                match (was_active, active(&conds)) {
+                    // Skipping starts after the directive's line and ends at the `#` of the
+                    // directive that resumes compiling.
+                    (true, false) => {
+                        skip_start = Some(tokens.get(end).map_or(text.len() as u32, |nl| nl.span.start));
+                    }
+                    (false, true) => skipped.extend(skip_start.take().map(|start| start..t.span.start)),
+                    _ => {}
+                }
                 i = end;
                 continue;
             }
@@ -110,17 +131,28 @@ impl Preprocessor<'_> {
             }
             i += 1;
         }
+        skipped.extend(skip_start.map(|start| start..u32::MAX));
         self.flush(&mut run);
+        // An unterminated comment is reported wherever it starts: it hides the rest of the file,
+        // directives included, and C reports it in skipped text too.
+        let comment_start =
+            lexical.iter().find(|d| d.code == Code::UnterminatedComment).map(|d| d.primary_span().start);
+        let lexical = lexical.into_iter().filter(|d| {
+            d.code == Code::UnterminatedComment
+                || !skipped.iter().any(|r| r.contains(&d.primary_span().start))
+        });
+        self.diags.insert(lexical_at, lexical);
         for c in conds.into_iter().rev() {
-            self.diags.push(
-                Diagnostic::error(
-                    Code::UnterminatedConditional,
-                    "unterminated conditional",
-                    c.opened,
-                    "this is never closed",
-                )
-                .with_help("add `#endif` before the end of the file"),
+            let mut d = Diagnostic::error(
+                Code::UnterminatedConditional,
+                "unterminated conditional",
+                c.opened,
+                "this is never closed",
             );
+            if comment_start.is_some_and(|start| start > c.opened.start) {
+                d = d.with_note("the rest of the file is inside the unterminated comment, so an `#endif` there is not seen");
+            }
+            self.diags.push(d.with_help("add `#endif` before the end of the file"));
         }
     }
 
@@ -181,6 +213,8 @@ impl Preprocessor<'_> {
                         )
                         .with_label(else_span, "the `#else` is here"),
                     );
+                    // Whatever follows it up to `#endif` is as unreachable as the directive.
+                    conds.last_mut().expect("checked above").taking = false;
                     return;
                 }
                 let (parent_active, taken) = (c.parent_active, c.taken);
@@ -225,11 +259,11 @@ impl Preprocessor<'_> {
                 let message = match (rest.first(), rest.last()) {
                     (Some(first), Some(last)) => {
                         let whole = self.sources.join(first.span, last.span);
-                        self.sources.text(whole).to_string()
+                        format!("#{name}: {}", self.sources.text(whole))
                     }
-                    _ => String::new(),
+                    _ => format!("`#{name}` directive"),
                 };
-                let mut d = Diagnostic::error(Code::ErrorDirective, format!("#{name}: {message}"), span, "");
+                let mut d = Diagnostic::error(Code::ErrorDirective, message, span, "");
                 if name == "warning" {
                     d.severity = Severity::Warning;
                 }
@@ -414,11 +448,12 @@ impl Preprocessor<'_> {
         let mut spans: Vec<Span> = Vec::new();
         let mut i = 0;
         let malformed = |pp: &mut Self, span: Span, label: &str| {
-            pp.diags.push(
-                Diagnostic::error(Code::MalformedMacroParams, "malformed macro parameter list", span, label)
-                    .with_label(open.span, "the parameter list starts here")
-                    .with_help("write `#define NAME(a, b) ...` with distinct identifiers"),
-            );
+            let mut d =
+                Diagnostic::error(Code::MalformedMacroParams, "malformed macro parameter list", span, label);
+            if span != open.span {
+                d = d.with_label(open.span, "the parameter list starts here");
+            }
+            pp.diags.push(d.with_help("write `#define NAME(a, b) ...` with distinct identifiers"));
         };
         if tokens.first().is_some_and(|t| t.kind == TokenKind::RParen) {
             return Some((params, 1));
@@ -447,7 +482,7 @@ impl Preprocessor<'_> {
                     return None;
                 }
                 None => {
-                    malformed(self, open.span, "the list is never closed");
+                    malformed(self, open.span, "this parameter list is never closed");
                     return None;
                 }
             }
@@ -460,7 +495,7 @@ impl Preprocessor<'_> {
                     return None;
                 }
                 None => {
-                    malformed(self, open.span, "the list is never closed");
+                    malformed(self, open.span, "this parameter list is never closed");
                     return None;
                 }
             }

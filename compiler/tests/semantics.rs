@@ -596,8 +596,6 @@ fn unknown_coordinate_space_with_suggestion() {
 }
 
 #[test]
-#[ignore = "bug: a transposed space name (\"wrold\") gets no suggestion: the edit distance counts a \
-            transposition as 2 edits, above the threshold of len/3 = 1"]
 fn unknown_space_with_transposed_letters_suggests() {
     let (codes, text) = run(&lines(&[
         "surface matte()",
@@ -1047,8 +1045,6 @@ fn offset(src: &str, needle: &str, skip: usize) -> u32 {
 }
 
 #[test]
-#[ignore = "bug: when a value's rate comes from a declared variable, the \"because of this\" label \
-            points at the use (the same span as the primary label), not at the declaration"]
 fn rate_origin_label_points_at_the_declaration() {
     let src = lines(&[
         "surface shader float4 stripes(vertex float4 uv)",
@@ -1070,8 +1066,6 @@ fn rate_origin_label_points_at_the_declaration() {
 }
 
 #[test]
-#[ignore = "bug: RenderMan-style rate diagnostics use Stanford words: \"declared primitive group\" \
-            and \"under a vertex condition\" for `uniform` and varying"]
 fn renderman_rate_messages_say_uniform_and_varying() {
     let (codes, text) = run(&lines(&[
         "surface matte()",
@@ -1089,8 +1083,6 @@ fn renderman_rate_messages_say_uniform_and_varying() {
 }
 
 #[test]
-#[ignore = "bug: E0602, E0604 and E0605 have no help line, although the fix is known (declare the \
-            variable varying/fragment or leave its rate out)"]
 fn rate_errors_have_a_help_line() {
     for src in [
         lines(&["surface matte()", "{", "    uniform float u = s;", "    Ci = u;", "}"]),
@@ -1119,8 +1111,6 @@ fn rate_errors_have_a_help_line() {
 }
 
 #[test]
-#[ignore = "bug: the help of E0504 always suggests `color noise(P)`, even for a user function whose \
-            overloads differ in their parameters, not their result"]
 fn ambiguous_call_help_fits_the_function() {
     let (codes, text) = run(&lines(&[
         "float weigh(float x, color c) { return x; }",
@@ -1135,7 +1125,6 @@ fn ambiguous_call_help_fits_the_function() {
 }
 
 #[test]
-#[ignore = "bug: an error in a function is reported once per shader that calls it"]
 fn function_called_by_two_shaders_reports_once() {
     let (codes, text) = run(&lines(&[
         "float scaled(float x) { return x * gain; }",
@@ -1146,8 +1135,6 @@ fn function_called_by_two_shaders_reports_once() {
 }
 
 #[test]
-#[ignore = "bug: a function no shader calls is not checked when the file has shaders \
-            (sema::check only checks functions on their own in files without shaders)"]
 fn uncalled_function_is_checked() {
     let (codes, text) =
         run(&lines(&["float unused(float x) { return x * gain; }", "surface matte() { Ci = Cs; }"]));
@@ -1155,8 +1142,6 @@ fn uncalled_function_is_checked() {
 }
 
 #[test]
-#[ignore = "bug: a negative constant index is not reported: `-1` is a negation, not a literal, so \
-            the range check does not see it"]
 fn negative_constant_index_out_of_range() {
     let (codes, text) =
         run(&lines(&["surface matte()", "{", "    float a[3] = {1, 2, 3};", "    Ci = a[-1];", "}"]));
@@ -1164,8 +1149,6 @@ fn negative_constant_index_out_of_range() {
 }
 
 #[test]
-#[ignore = "bug: a built-in with two uniform output arguments reports only the first: rate \
-            diagnostics are deduplicated by (value span, store span), which both stores share"]
 fn each_uniform_output_of_a_builtin_is_reported() {
     let (codes, text) = run(&lines(&[
         "surface glass()",

@@ -277,7 +277,10 @@ impl Analysis<'_> {
             match s {
                 Stmt::If { cond, then, otherwise } => {
                     if exits(then, loops) || exits(otherwise, loops) {
-                        consider(&mut best, Some((self.rate(*cond), self.shader.exprs[cond.0 as usize].span)));
+                        consider(
+                            &mut best,
+                            Some((self.rate(*cond), self.shader.exprs[cond.0 as usize].span)),
+                        );
                     }
                     consider(&mut best, self.exit_conditions(then, loops));
                     consider(&mut best, self.exit_conditions(otherwise, loops));
@@ -365,17 +368,20 @@ impl Analysis<'_> {
                     let value_span = self.shader.exprs[d.0 as usize].span;
                     let mut diag = Diagnostic::error(
                         Code::DefaultRate,
-                        format!("the default of `{}` must be known once per draw, but it is {}", local.name, word(rate)),
+                        format!(
+                            "the default of `{}` must be known once per draw, but it is {}",
+                            local.name,
+                            word(rate)
+                        ),
                         value_span,
                         format!("this is {}", word(rate)),
                     );
                     if origin.span != value_span {
                         diag = diag.with_label(origin.span, format!("{} because of this", word(rate)));
                     }
-                    diags.push(
-                        diag.with_note("defaults are computed on the host before drawing")
-                            .with_help("use constants and other parameters here; compute per-point values in the body"),
-                    );
+                    diags.push(diag.with_note("defaults are computed on the host before drawing").with_help(
+                        "use constants and other parameters here; compute per-point values in the body",
+                    ));
                 }
             }
         }
@@ -385,15 +391,18 @@ impl Analysis<'_> {
                 Target::Local(l) => {
                     let local = &self.shader.locals[l.0 as usize];
                     let is_result = Some(l) == self.shader.result_local;
-                    if !local.declared && !(stanford && is_result) {
+                    if !(local.declared || stanford && is_result) {
                         continue;
                     }
                     let declared = if is_result { Rate::FRAGMENT } else { local.rate };
                     (local.name.to_string(), declared, local.span, is_result)
                 }
-                Target::Global(g) => {
-                    (g.name.to_string(), Rate { frequency: Frequency::Fragment, perlight: g.perlight }, span, false)
-                }
+                Target::Global(g) => (
+                    g.name.to_string(),
+                    Rate { frequency: Frequency::Fragment, perlight: g.perlight },
+                    span,
+                    false,
+                ),
             };
             let mut value_rate = self.rate(value);
             if !stanford && value_rate.perlight && !declared.perlight {
@@ -420,7 +429,8 @@ impl Analysis<'_> {
                     "one value per light",
                 );
                 diags.push(
-                    with_origin(d, "per-light because of this".into()).with_help("sum it over the lights with `integrate(...)`"),
+                    with_origin(d, "per-light because of this".into())
+                        .with_help("sum it over the lights with `integrate(...)`"),
                 );
                 continue;
             }
@@ -428,7 +438,10 @@ impl Analysis<'_> {
                 let mut d = if origin.why == Why::Derivative {
                     let d = Diagnostic::error(
                         Code::DerivativeRate,
-                        format!("a screen-space derivative cannot be stored in `{name}`, declared {}", word(declared)),
+                        format!(
+                            "a screen-space derivative cannot be stored in `{name}`, declared {}",
+                            word(declared)
+                        ),
                         value_span,
                         "derivatives exist only per fragment",
                     );
@@ -444,8 +457,9 @@ impl Analysis<'_> {
                         value_span,
                         "this value is varying",
                     );
-                    with_origin(d, "varying because of this".into())
-                        .with_help(format!("declare `{name}` varying, or compute it from uniform values only"))
+                    with_origin(d, "varying because of this".into()).with_help(format!(
+                        "declare `{name}` varying, or compute it from uniform values only"
+                    ))
                 } else {
                     let d = Diagnostic::error(
                         Code::RateTooHigh,
@@ -467,9 +481,13 @@ impl Analysis<'_> {
                 diags.push(
                     Diagnostic::error(
                         Code::ControlDependence,
-                        format!("`{name}` is declared {} but assigned under a {} condition", word(declared), word(control)),
+                        format!(
+                            "`{name}` is declared {} but assigned under a {} condition",
+                            word(declared),
+                            word(control)
+                        ),
                         span,
-                        format!("whether this assignment happens is {}", word(control)),
+                        format!("this assignment depends on a {} condition", word(control)),
                     )
                     .with_label(condition, format!("this condition is {}", word(control)))
                     .with_label(decl_span, format!("`{name}` is declared {} here", word(declared)))

@@ -71,8 +71,13 @@ impl Lowerer<'_> {
     pub(super) fn declaration(&mut self, decl: &ast::VarDecl, out: &mut Block) {
         if let Some(span) = decl.qualifiers.output {
             self.error(
-                Diagnostic::error(Code::InvalidQualifier, "only parameters can be `output`", span, "not a parameter")
-                    .with_help("remove `output`; a variable can always be assigned"),
+                Diagnostic::error(
+                    Code::InvalidQualifier,
+                    "only parameters can be `output`",
+                    span,
+                    "not a parameter",
+                )
+                .with_help("remove `output`; a variable can always be assigned"),
             );
         }
         for d in &decl.declarators {
@@ -214,7 +219,15 @@ impl Lowerer<'_> {
                         Code::MisplacedStatement,
                         "`illuminance` belongs in RenderMan-style surface shaders",
                         s.span,
-                        format!("this is {} {} shader", super::expr::article(self.kind), self.kind.keyword()),
+                        if self.stanford {
+                            "this is a Stanford-style shader".to_string()
+                        } else {
+                            format!(
+                                "this is {} {} shader",
+                                super::expr::article(self.kind),
+                                self.kind.keyword()
+                            )
+                        },
                     );
                     d = if self.stanford {
                         d.with_help("Stanford-style shaders sum per-light values with `integrate(...)`")
@@ -283,8 +296,13 @@ impl Lowerer<'_> {
                     "declare the function with a result type, e.g. `float f(...)`"
                 };
                 self.error(
-                    Diagnostic::error(Code::InvalidReturn, format!("{what} returns no value"), v.span, "this value has nowhere to go")
-                        .with_help(help),
+                    Diagnostic::error(
+                        Code::InvalidReturn,
+                        format!("{what} returns no value"),
+                        v.span,
+                        "this value has nowhere to go",
+                    )
+                    .with_help(help),
                 );
                 return;
             }

@@ -80,11 +80,10 @@ fn parse_expr(expr: &str) -> String {
 }
 
 fn parse_ok(src: &str) -> Module {
-    let checked = check_source("t.sl", src, &MemoryLoader::default());
-    let rendered =
-        patina_compiler::diag::render_text(&checked.sources, &checked.diagnostics.clone().into_vec());
-    assert!(checked.diagnostics.is_empty(), "unexpected diagnostics:\n{rendered}");
-    checked.module
+    let (module, diags, sources) = parse(src);
+    let rendered = patina_compiler::diag::render_text(&sources, &diags.clone().into_vec());
+    assert!(diags.is_empty(), "unexpected diagnostics:\n{rendered}");
+    module
 }
 
 #[test]

@@ -89,8 +89,17 @@ pub fn check(module: &ast::Module, diags: &mut Diagnostics) -> Program {
     let mut unused: Vec<&ast::FunctionDef> =
         table.values().flatten().copied().filter(|f| !shared.inlined.contains(&f.span)).collect();
     unused.sort_by_key(|f| (f.span.file, f.span.start));
+    // A function outside any shader is read in the file's style (Stanford if its shaders are).
+    let stanford = module
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::Shader(s) if !matches!(s.style, ast::ShaderStyle::RenderMan)))
+        && !module
+            .items
+            .iter()
+            .any(|i| matches!(i, Item::Shader(s) if matches!(s.style, ast::ShaderStyle::RenderMan)));
     for f in unused {
-        lower::check_function(f, &table, &mut shared, diags);
+        lower::check_function(f, stanford, &table, &mut shared, diags);
     }
     program
 }

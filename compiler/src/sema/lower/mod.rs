@@ -58,6 +58,8 @@ pub(super) struct Lowerer<'a> {
     shared: &'a mut Shared,
     /// Whether an error was found in this shader (reported here or before).
     failed: bool,
+    /// Checking a function on its own, not inlined into a shader.
+    standalone: bool,
     functions: &'a FunctionTable<'a>,
     kind: ShaderKind,
     stanford: bool,
@@ -90,6 +92,7 @@ pub(super) fn lower_shader(
         diags,
         shared,
         failed: false,
+        standalone: false,
         functions,
         kind: shader.kind,
         stanford,
@@ -153,6 +156,7 @@ pub(super) fn lower_shader(
 /// otherwise go unreported).
 pub(super) fn check_function(
     f: &ast::FunctionDef,
+    stanford: bool,
     functions: &FunctionTable<'_>,
     shared: &mut Shared,
     diags: &mut Diagnostics,
@@ -161,9 +165,11 @@ pub(super) fn check_function(
         diags,
         shared,
         failed: false,
+        standalone: false,
         functions,
         kind: f.context.map_or(ShaderKind::Surface, |c| c.0),
-        stanford: false,
+        // Only Stanford style prefixes functions with a shader kind.
+        stanford: stanford || f.context.is_some(),
         locals: Vec::new(),
         exprs: Vec::new(),
         scopes: vec![FxHashMap::default()],
@@ -183,6 +189,7 @@ pub(super) fn check_function(
             Some(l.push_expr(ExprKind::Literal(Literal::Float(0.0)), ty, p.span))
         })
         .collect();
+    l.standalone = true;
     l.inline_body(f, &args, f.span, &mut body);
 }
 
@@ -193,7 +200,7 @@ impl Lowerer<'_> {
         let key = (d.code, d.primary_span(), d.message.clone());
         if self.shared.reported.insert(key) {
             let d = match self.frames.last() {
-                Some(frame) if !d.labels.iter().any(|l| l.span == frame.call_span) => {
+                Some(frame) if !self.standalone && !d.labels.iter().any(|l| l.span == frame.call_span) => {
                     let call = frame.call_span;
                     let name = frame.name.clone();
                     d.with_label(call, format!("in this call of `{name}`"))

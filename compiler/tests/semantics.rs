@@ -630,8 +630,6 @@ fn space_on_a_string() {
 }
 
 #[test]
-#[ignore = "bug: a space on a float is a syntax error (E0301 \"expected `;`, `,` or an operator, \
-            found `(`\"), not the semantic E0518 \"`float` values have no space\""]
 fn space_on_a_float() {
     let (codes, text) =
         run(&lines(&["surface matte()", "{", "    float x = float \"world\" (1);", "    Ci = x;", "}"]));

@@ -106,6 +106,49 @@ impl Ctx<'_> {
         Expr { kind, span: self.span(l, r) }
     }
 
+    /// Builds the tree of `first op operand op operand ...` by precedence climbing. Each operand
+    /// comes with its token range, so every node spans exactly its tokens (parentheses included).
+    /// All binary operators associate to the left.
+    pub fn climb(&self, first: (Expr, usize, usize), rest: Vec<(BinaryOp, usize, Expr, usize)>) -> Expr {
+        fn precedence(op: BinaryOp) -> u8 {
+            use BinaryOp::*;
+            match op {
+                Or => 1,
+                And => 2,
+                BitOr => 3,
+                BitAnd => 4,
+                Eq | Ne => 5,
+                Lt | Le | Gt | Ge => 6,
+                Shl | Shr => 7,
+                Add | Sub => 8,
+                // RenderMan: `^` (cross) between `+` and `*`, `.` (dot) tightest.
+                Caret => 9,
+                Mul | Div | Rem => 10,
+                Dot => 11,
+            }
+        }
+        let mut operands: Vec<(Expr, usize, usize)> = Vec::with_capacity(rest.len() + 1);
+        let mut operators: Vec<BinaryOp> = Vec::with_capacity(rest.len());
+        let reduce = |operands: &mut Vec<(Expr, usize, usize)>, op: BinaryOp| {
+            let (rhs, _, r) = operands.pop().expect("an operand for each operator");
+            let (lhs, l, _) = operands.pop().expect("an operand for each operator");
+            operands.push((self.binary(l, r, op, lhs, rhs), l, r));
+        };
+        operands.push(first);
+        for (op, l, operand, r) in rest {
+            while operators.last().is_some_and(|&top| precedence(top) >= precedence(op)) {
+                let top = operators.pop().expect("checked");
+                reduce(&mut operands, top);
+            }
+            operators.push(op);
+            operands.push((operand, l, r));
+        }
+        while let Some(op) = operators.pop() {
+            reduce(&mut operands, op);
+        }
+        operands.pop().expect("the whole expression").0
+    }
+
     /// A binary operation.
     pub fn binary(&self, l: usize, r: usize, op: BinaryOp, lhs: Expr, rhs: Expr) -> Expr {
         self.expr(l, r, ExprKind::Binary { op, lhs: Box::new(lhs), rhs: Box::new(rhs) })

@@ -2,6 +2,10 @@
 //! does, with the standard-library modules it includes. Target: under 1 ms for the largest.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+
+// The allocator the `patina` binary uses, so the numbers are the command line's.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use patina_compiler::check_source;
 use patina_compiler::syntax::preprocess::FsLoader;
 

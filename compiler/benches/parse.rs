@@ -5,6 +5,10 @@
 //! so it reads as lines per second (target: over a million in release).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+
+// The allocator the `patina` binary uses, so the numbers are the command line's.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use patina_compiler::check_source;
 use patina_compiler::diag::Diagnostics;
 use patina_compiler::source::SourceMap;

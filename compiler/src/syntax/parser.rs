@@ -412,6 +412,16 @@ pub fn parse(tokens: &[Token], sources: &SourceMap, diags: &mut Diagnostics) -> 
             Module::default()
         }
     };
-    diags.extend(ctx.reported.take());
+    // Actions run in reduction order, not text order (an inlined rule's action runs when its
+    // parent reduces); report in the order of the tokens the diagnostics point at.
+    let mut reported = ctx.reported.take();
+    reported.sort_by_cached_key(|d| {
+        let at = sources.call_site(d.primary_span());
+        tokens.iter().position(|t| {
+            let t = sources.call_site(t.span);
+            t.file == at.file && t.end > at.start
+        })
+    });
+    diags.extend(reported);
     module
 }

@@ -53,16 +53,16 @@ fn warnings_alone_do_not_fail() {
 
 #[test]
 fn json_format_gives_one_object_per_line() {
-    let bad = scratch("json.sl", b"surface s() { x = ; y = trace(P, N); }\n");
+    let bad = scratch("json.sl", b"surface s() { x = 1; color y = trace(P, N); }\n");
     let out = patina(&["check", "--format", "json", bad.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     let stdout = String::from_utf8(out.stdout).unwrap();
     let lines: Vec<serde_json::Value> =
         stdout.lines().map(|l| serde_json::from_str(l).expect("each line is JSON")).collect();
     assert_eq!(lines.len(), 2);
-    assert_eq!(lines[0]["code"], "E0301");
+    assert_eq!(lines[0]["code"], "E0501");
     assert_eq!(lines[0]["location"]["line"], 1);
-    assert_eq!(lines[0]["location"]["column"], 19);
+    assert_eq!(lines[0]["location"]["column"], 15);
     assert_eq!(lines[1]["code"], "E0401");
     assert_eq!(lines[1]["labels"][0]["primary"], true);
 }

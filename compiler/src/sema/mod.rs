@@ -9,39 +9,23 @@ pub mod explain;
 pub mod globals;
 mod lower;
 pub mod rates;
+pub mod unsupported;
 
 use rustc_hash::FxHashMap;
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::Program;
-use crate::syntax::ast::{self, Item, StmtKind};
+use crate::syntax::ast::{self, Item};
 use lower::FunctionTable;
 
-/// Collects every function of the module, local functions included, reporting duplicates.
+/// Collects the module's top-level functions, reporting duplicates. (Functions defined inside
+/// bodies are scoped to them; the lowering handles those.)
 fn functions<'a>(module: &'a ast::Module, diags: &mut Diagnostics) -> FunctionTable<'a> {
-    fn locals<'a>(stmts: &'a [ast::Stmt], out: &mut Vec<&'a ast::FunctionDef>) {
-        for s in stmts {
-            match &s.kind {
-                StmtKind::Function(f) => {
-                    out.push(f);
-                    locals(&f.body.stmts, out);
-                }
-                StmtKind::Block(b) => locals(&b.stmts, out),
-                _ => {}
-            }
-        }
-    }
-    let mut all: Vec<&ast::FunctionDef> = Vec::new();
-    for item in &module.items {
-        match item {
-            Item::Function(f) => {
-                all.push(f);
-                locals(&f.body.stmts, &mut all);
-            }
-            Item::Shader(s) => locals(&s.body.stmts, &mut all),
-            _ => {}
-        }
-    }
+    let all: Vec<&ast::FunctionDef> = module
+        .items
+        .iter()
+        .filter_map(|i| if let Item::Function(f) = i { Some(&**f) } else { None })
+        .collect();
     let mut table: FunctionTable<'a> = FxHashMap::default();
     for f in all {
         let signature = |f: &ast::FunctionDef| -> Vec<(ast::TypeName, Option<u32>)> {

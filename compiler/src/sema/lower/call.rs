@@ -90,14 +90,27 @@ impl Lowerer<'_> {
         out: &mut Block,
     ) -> Option<ExprId> {
         let functions = self.functions;
-        let user: Vec<Candidate<'_>> = functions
-            .get(&callee.name)
-            .map_or(Vec::new(), |fs| fs.iter().map(|f| Candidate::User(f)).collect());
+        // Functions defined in enclosing bodies come first, then the file's, then the built-ins.
+        let locals: Vec<(usize, std::rc::Rc<ast::FunctionDef>)> =
+            self.local_functions.iter().filter(|(_, f)| f.name.name == callee.name).cloned().collect();
+        let user: Vec<Candidate<'_>> = if locals.is_empty() {
+            functions
+                .get(&callee.name)
+                .map_or(Vec::new(), |fs| fs.iter().map(|f| Candidate::User(f)).collect())
+        } else {
+            locals.iter().map(|(_, f)| Candidate::User(f)).collect()
+        };
         let candidates: Vec<Candidate<'_>> = if user.is_empty() {
             builtins::builtins().overloads(&callee.name).iter().map(Candidate::Builtin).collect()
         } else {
             user
         };
+        if candidates.is_empty()
+            && let Some(d) = crate::sema::unsupported::call(callee)
+        {
+            self.error(d);
+            return None;
+        }
         if candidates.is_empty() {
             let known: Vec<String> = functions
                 .keys()
@@ -149,7 +162,8 @@ impl Lowerer<'_> {
                     return None;
                 }
                 let args: Vec<Option<ExprId>> = lowered.into_iter().map(Some).collect();
-                let result = self.inline_body(f, &args, span, out);
+                let outer = locals.iter().find(|(_, g)| std::ptr::eq(&**g, f)).map(|(depth, _)| *depth);
+                let result = self.inline_body(f, &args, span, outer, out);
                 let ret = declared_type(f.return_type, None);
                 match result {
                     Some(local) => Some(self.push_expr(ExprKind::Local(local), ret, span)),

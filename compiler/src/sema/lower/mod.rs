@@ -40,6 +40,9 @@ struct Frame {
     ret: Type,
     /// The scope depth where the callee's scopes start (it cannot see the caller's locals).
     scope_base: usize,
+    /// For a function defined in a body, the scope depth of its definition: it sees the scopes
+    /// below that (the body's variables), as nested functions do.
+    outer: Option<usize>,
     call_span: Span,
 }
 
@@ -67,6 +70,8 @@ pub(super) struct Lowerer<'a> {
     exprs: Vec<Expr>,
     /// Name scopes, innermost last; scope 0 holds module-level variables.
     scopes: Vec<FxHashMap<SmolStr, LocalId>>,
+    /// Functions defined in the bodies being lowered, with the scope depth of their definition.
+    local_functions: Vec<(usize, std::rc::Rc<ast::FunctionDef>)>,
     frames: Vec<Frame>,
     loops: u32,
     light_loop: LightLoop,
@@ -99,6 +104,7 @@ pub(super) fn lower_shader(
         locals: Vec::new(),
         exprs: Vec::new(),
         scopes: vec![FxHashMap::default()],
+        local_functions: Vec::new(),
         frames: Vec::new(),
         loops: 0,
         light_loop: LightLoop::None,
@@ -173,6 +179,7 @@ pub(super) fn check_function(
         locals: Vec::new(),
         exprs: Vec::new(),
         scopes: vec![FxHashMap::default()],
+        local_functions: Vec::new(),
         frames: Vec::new(),
         loops: 0,
         light_loop: LightLoop::None,
@@ -190,7 +197,7 @@ pub(super) fn check_function(
         })
         .collect();
     l.standalone = true;
-    l.inline_body(f, &args, f.span, &mut body);
+    l.inline_body(f, &args, f.span, None, &mut body);
 }
 
 impl Lowerer<'_> {
@@ -264,10 +271,13 @@ impl Lowerer<'_> {
 
     /// The local a name refers to: this function's scopes, then the module's.
     fn lookup_local(&self, name: &str) -> Option<LocalId> {
-        let base = self.frames.last().map_or(0, |f| f.scope_base);
-        self.scopes[base.max(1).min(self.scopes.len())..]
-            .iter()
+        let (base, outer) = self.frames.last().map_or((0, None), |f| (f.scope_base, f.outer));
+        let own = &self.scopes[base.max(1).min(self.scopes.len())..];
+        let enclosing =
+            outer.map_or(&self.scopes[..0], |depth| &self.scopes[1..depth.min(self.scopes.len())]);
+        own.iter()
             .rev()
+            .chain(enclosing.iter().rev())
             .chain(self.scopes[..1].iter())
             .find_map(|s| s.get(name).copied())
     }

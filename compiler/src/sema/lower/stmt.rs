@@ -29,9 +29,11 @@ impl Lowerer<'_> {
     /// Lowers statements in a new scope, appending to `out`.
     pub(super) fn block(&mut self, stmts: &[ast::Stmt], out: &mut Block) {
         self.scopes.push(FxHashMap::default());
+        let functions = self.local_functions.len();
         for s in stmts {
             self.stmt(s, out);
         }
+        self.local_functions.truncate(functions);
         self.scopes.pop();
     }
 
@@ -122,8 +124,9 @@ impl Lowerer<'_> {
         match &s.kind {
             StmtKind::Block(b) => self.block(&b.stmts, out),
             StmtKind::Decl(d) => self.declaration(d, out),
-            // Local functions are collected with the module's functions and inlined at calls.
-            StmtKind::Function(_) => {}
+            // A function defined in a body is visible in the rest of that body and inlined at
+            // its calls there, seeing the body's variables.
+            StmtKind::Function(f) => self.define_local_function(f),
             StmtKind::Expr(e) => {
                 if let Some(id) = self.expr(e, None, out)
                     && matches!(self.expr_ref(id).kind, crate::ir::ExprKind::Builtin(..))
@@ -131,7 +134,8 @@ impl Lowerer<'_> {
                     out.push(Stmt::Eval(id));
                 }
             }
-            StmtKind::Empty | StmtKind::Error | StmtKind::Gather { .. } => {}
+            StmtKind::Empty | StmtKind::Error => {}
+            StmtKind::Gather { .. } => self.error(crate::sema::unsupported::gather(s.span)),
             StmtKind::If { cond, then, otherwise } => {
                 let cond = self.expr(cond, Some(Type::BOOL), out).and_then(|c| self.condition(c));
                 let then = self.sub_block(then);
@@ -321,11 +325,39 @@ impl Lowerer<'_> {
     }
 
     /// Inlines the body of `f` with its parameters bound to `args`; returns the result's local.
+    fn define_local_function(&mut self, f: &ast::FunctionDef) {
+        let depth = self.scopes.len();
+        let signature = |f: &ast::FunctionDef| -> Vec<(ast::TypeName, Option<u32>)> {
+            f.params.iter().map(|p| (p.ty.name, p.array.map(|a| a.len.unwrap_or(0)))).collect()
+        };
+        let previous = self
+            .local_functions
+            .iter()
+            .find(|(d, g)| *d == depth && g.name.name == f.name.name && signature(g) == signature(f))
+            .map(|(_, g)| g.name.span);
+        if let Some(previous) = previous {
+            self.error(
+                Diagnostic::error(
+                    Code::Redefinition,
+                    format!("function `{}` is defined twice with the same parameter types", f.name.name),
+                    f.name.span,
+                    "defined again here",
+                )
+                .with_label(previous, "first defined here"),
+            );
+            return;
+        }
+        self.local_functions.push((depth, std::rc::Rc::new(f.clone())));
+    }
+
+    /// Inlines the body of `f` with its parameters bound to `args`; returns the result's local.
+    /// `outer` is the definition depth of a function defined in a body.
     pub(super) fn inline_body(
         &mut self,
         f: &ast::FunctionDef,
         args: &[Option<ExprId>],
         call_span: crate::source::Span,
+        outer: Option<usize>,
         out: &mut Block,
     ) -> Option<LocalId> {
         self.shared.inlined.insert(f.span);
@@ -360,7 +392,7 @@ impl Lowerer<'_> {
             }
             self.bind(&p.name, id);
         }
-        self.frames.push(Frame { name: f.name.name.clone(), result, ret, scope_base, call_span });
+        self.frames.push(Frame { name: f.name.name.clone(), result, ret, scope_base, outer, call_span });
         let stmts = &f.body.stmts;
         for s in stmts {
             self.stmt(s, &mut body);

@@ -84,7 +84,18 @@ impl Expander<'_> {
             out.extend(input);
             return;
         }
-        let mut frames = vec![Frame { tokens: input, pos: 0, disabled: None }];
+        // Most tokens name no macro: copy them straight through, and start the rescanning machinery
+        // at the first one that does.
+        let macros = self.macros;
+        let first_use = input
+            .iter()
+            .position(|t| t.kind == TokenKind::Ident && macros.get(self.sources.text(t.span)).is_some());
+        let Some(first_use) = first_use else {
+            out.extend(input);
+            return;
+        };
+        out.extend_from_slice(&input[..first_use]);
+        let mut frames = vec![Frame { tokens: input, pos: first_use, disabled: None }];
         // The use of a macro written in `input` being expanded: where its output starts in `out`,
         // and its name.
         let mut call: Option<(usize, Token)> = None;

@@ -19,7 +19,7 @@ pub struct Token {
     pub space_before: bool,
 }
 
-/// Splits one file into tokens, line breaks included; malformed tokens are reported and left out,
+/// Splits one file into tokens (the first token of each line marked `line_start`); malformed tokens are reported and left out,
 /// except malformed numbers, which stay in (as integers) so that the parser does not trip over them.
 pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Token> {
     let mut tokens = Vec::with_capacity(text.len() / 4);
@@ -32,9 +32,9 @@ pub fn lex(file: FileId, text: &str, diags: &mut Diagnostics) -> Vec<Token> {
         let space_before = range.start > prev_end;
         prev_end = range.end;
         let kind = match result {
+            // Line breaks are not tokens: `line_start` on the next token records them.
             Ok(TokenKind::Newline) => {
                 line_start = true;
-                tokens.push(Token { kind: TokenKind::Newline, span, line_start: false, space_before });
                 continue;
             }
             Ok(TokenKind::Number) => match classify_number(lexer.slice()) {

@@ -98,7 +98,10 @@ impl Ctx<'_> {
 
     /// The identifier at token `i`.
     pub fn ident(&self, i: usize) -> Ident {
-        Ident { name: SmolStr::new(self.text(i)), span: self.tokens[i].span }
+        let text = self.text(i);
+        // Names are short: store them inline, skipping `new`'s checks for whitespace runs.
+        let name = if text.len() <= 23 { SmolStr::new_inline(text) } else { SmolStr::new(text) };
+        Ident { name, span: self.tokens[i].span }
     }
 
     /// An expression node from token `l` to `r`.

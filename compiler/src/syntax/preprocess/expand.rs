@@ -79,9 +79,9 @@ impl Expander<'_> {
 
     /// Expands `input`, appending the result to `out`. Macros named in `disabled` are not expanded
     /// (they are being expanded further out).
-    pub fn expand(&mut self, input: Vec<Token>, disabled: &[SmolStr], out: &mut Vec<Token>) {
+    pub fn expand(&mut self, input: &[Token], disabled: &[SmolStr], out: &mut Vec<Token>) {
         if self.macros.is_empty() || *self.exhausted {
-            out.extend(input);
+            out.extend_from_slice(input);
             return;
         }
         // Most tokens name no macro: copy them straight through, and start the rescanning machinery
@@ -91,11 +91,11 @@ impl Expander<'_> {
             .iter()
             .position(|t| t.kind == TokenKind::Ident && macros.get(self.sources.text(t.span)).is_some());
         let Some(first_use) = first_use else {
-            out.extend(input);
+            out.extend_from_slice(input);
             return;
         };
         out.extend_from_slice(&input[..first_use]);
-        let mut frames = vec![Frame { tokens: input, pos: first_use, disabled: None }];
+        let mut frames = vec![Frame { tokens: input[first_use..].to_vec(), pos: 0, disabled: None }];
         // The use of a macro written in `input` being expanded: where its output starts in `out`,
         // and its name.
         let mut call: Option<(usize, Token)> = None;
@@ -290,7 +290,7 @@ impl Expander<'_> {
                 } else {
                     if expanded[index].is_none() {
                         let mut result = Vec::new();
-                        self.expand(args[index].clone(), disabled, &mut result);
+                        self.expand(&args[index], disabled, &mut result);
                         expanded[index] = Some(result);
                     }
                     expanded[index].clone().unwrap_or_default()

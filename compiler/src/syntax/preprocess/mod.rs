@@ -102,37 +102,38 @@ impl Preprocessor<'_> {
         let mut skipped: Vec<Range<u32>> = Vec::new();
         let mut skip_start: Option<u32> = None;
         let mut conds: Vec<Conditional> = Vec::new();
-        let mut run: Vec<Token> = Vec::new();
+        // Text between directives is expanded straight from `tokens`; conditionals change what is
+        // compiled only at directives.
+        let mut run_start = Some(0);
         let mut i = 0;
         while i < tokens.len() {
             let t = tokens[i];
-            if t.kind == TokenKind::Hash && t.line_start {
-                let end = tokens[i..]
-                    .iter()
-                    .position(|t| t.kind == TokenKind::Newline)
-                    .map_or(tokens.len(), |n| i + n);
-                self.flush(&mut run);
-                let was_active = active(&conds);
-                self.directive(t, &tokens[i + 1..end], &mut conds, file, depth);
-                match (was_active, active(&conds)) {
-                    // Skipping starts after the directive's line and ends at the `#` of the
-                    // directive that resumes compiling.
-                    (true, false) => {
-                        skip_start = Some(tokens.get(end).map_or(text.len() as u32, |nl| nl.span.start));
-                    }
-                    (false, true) => skipped.extend(skip_start.take().map(|start| start..t.span.start)),
-                    _ => {}
-                }
-                i = end;
+            if !(t.kind == TokenKind::Hash && t.line_start) {
+                i += 1;
                 continue;
             }
-            if t.kind != TokenKind::Newline && active(&conds) {
-                run.push(t);
+            let end = tokens[i + 1..].iter().position(|t| t.line_start).map_or(tokens.len(), |n| i + 1 + n);
+            if let Some(start) = run_start.take() {
+                self.flush(&tokens[start..i]);
             }
-            i += 1;
+            let was_active = active(&conds);
+            self.directive(t, &tokens[i + 1..end], &mut conds, file, depth);
+            match (was_active, active(&conds)) {
+                // Skipping starts after the directive's line and ends at the `#` of the directive
+                // that resumes compiling.
+                (true, false) => skip_start = Some(tokens[end - 1].span.end),
+                (false, true) => skipped.extend(skip_start.take().map(|start| start..t.span.start)),
+                _ => {}
+            }
+            if active(&conds) {
+                run_start = Some(end);
+            }
+            i = end;
+        }
+        if let Some(start) = run_start {
+            self.flush(&tokens[start..]);
         }
         skipped.extend(skip_start.map(|start| start..u32::MAX));
-        self.flush(&mut run);
         // An unterminated comment is reported wherever it starts: it hides the rest of the file,
         // directives included, and C reports it in skipped text too.
         let comment_start =
@@ -156,13 +157,12 @@ impl Preprocessor<'_> {
         }
     }
 
-    fn flush(&mut self, run: &mut Vec<Token>) {
+    fn flush(&mut self, run: &[Token]) {
         if run.is_empty() {
             return;
         }
-        let input = std::mem::take(run);
         let mut out = std::mem::take(&mut self.out);
-        self.expander().expand(input, &[], &mut out);
+        self.expander().expand(run, &[], &mut out);
         self.out = out;
     }
 
@@ -371,7 +371,7 @@ impl Preprocessor<'_> {
             i += 1;
         }
         let mut expanded = Vec::new();
-        self.expander().expand(resolved, &[], &mut expanded);
+        self.expander().expand(&resolved, &[], &mut expanded);
         match condition::evaluate(&expanded, self.sources, end) {
             Ok(value) => value != 0,
             Err(e) => {

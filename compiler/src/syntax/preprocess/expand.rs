@@ -39,6 +39,9 @@ struct Frame {
 /// Expands macros in token runs, reporting misuse.
 pub struct Expander<'a> {
     pub(super) macros: &'a FxHashMap<SmolStr, Macro>,
+    /// The first bytes of every macro name ever defined: a name starting otherwise is no macro,
+    /// which saves hashing almost every identifier.
+    pub(super) initials: &'a [bool; 256],
     pub(super) sources: &'a mut SourceMap,
     pub(super) diags: &'a mut Diagnostics,
     pub(super) produced: &'a mut usize,
@@ -87,9 +90,12 @@ impl Expander<'_> {
         // Most tokens name no macro: copy them straight through, and start the rescanning machinery
         // at the first one that does.
         let macros = self.macros;
-        let first_use = input
-            .iter()
-            .position(|t| t.kind == TokenKind::Ident && macros.get(self.sources.text(t.span)).is_some());
+        let first_use = input.iter().position(|t| {
+            t.kind == TokenKind::Ident && {
+                let name = self.sources.text(t.span);
+                self.initials[usize::from(name.as_bytes()[0])] && macros.contains_key(name)
+            }
+        });
         let Some(first_use) = first_use else {
             out.extend_from_slice(input);
             return;

@@ -53,6 +53,7 @@ pub fn preprocess(
         loader,
         diags,
         macros: FxHashMap::default(),
+        initials: [false; 256],
         once: FxHashSet::default(),
         out: Vec::new(),
         produced: 0,
@@ -67,6 +68,8 @@ struct Preprocessor<'a> {
     loader: &'a dyn SourceLoader,
     diags: &'a mut Diagnostics,
     macros: FxHashMap<SmolStr, Macro>,
+    /// First bytes of the names ever `#define`d (see `Expander::initials`).
+    initials: [bool; 256],
     once: FxHashSet<String>,
     out: Vec<Token>,
     produced: usize,
@@ -85,6 +88,7 @@ impl Preprocessor<'_> {
     fn expander(&mut self) -> Expander<'_> {
         Expander {
             macros: &self.macros,
+            initials: &self.initials,
             sources: self.sources,
             diags: self.diags,
             produced: &mut self.produced,
@@ -438,6 +442,7 @@ impl Preprocessor<'_> {
                 .with_label(old.name_span, "the previous definition"),
             );
         }
+        self.initials[usize::from(name.as_bytes()[0])] = true;
         self.macros.insert(name, new);
     }
 

@@ -80,6 +80,11 @@ pub const SIGNATURES: &[&str] = &[
     "for T in float|color|point|vector: T noise(float, float)",
     "for T in float|color|point|vector: T noise(point)",
     "for T in float|color|point|vector: T noise(point, float)",
+    // Signed noise in [-1, 1] (`2 * noise(x) - 1`), as Peachey defines it [TM L2681] and OSL has it.
+    "for T in float|color|point|vector: T snoise(float)",
+    "for T in float|color|point|vector: T snoise(float, float)",
+    "for T in float|color|point|vector: T snoise(point)",
+    "for T in float|color|point|vector: T snoise(point, float)",
     // Periodic noise: each domain argument followed by its period (uniform in RSL).
     "for T in float|color|point|vector: T pnoise(float, float)",
     "for T in float|color|point|vector: T pnoise(float, float, float, float)",

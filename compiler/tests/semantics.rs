@@ -1159,3 +1159,25 @@ fn each_uniform_output_of_a_builtin_is_reported() {
     assert_eq!(codes, [Code::VaryingToUniform.as_str(), Code::VaryingToUniform.as_str()], "{text}");
     assert!(text.contains("`kt`"), "{text}");
 }
+
+#[test]
+fn transform_with_an_unknown_space() {
+    let (codes, text) = run(&lines(&[
+        "surface matte()",
+        "{",
+        "    point p = transform(\"wrold\", P);",
+        "    color c = ctransform(\"hsb\", Cs);",
+        "    Ci = c;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0518", "E0518"]);
+    insta::assert_snapshot!("transform_with_an_unknown_space", text);
+}
+
+#[test]
+fn per_light_value_returned_from_a_stanford_shader() {
+    let (codes, text) = run(&lines(&["surface shader float4 lit()", "{", "    return Cl;", "}"]));
+    assert_eq!(codes, ["E0603"]);
+    assert!(text.contains("the shader returns one value"), "{text}");
+    insta::assert_snapshot!("per_light_value_returned_from_a_stanford_shader", text);
+}

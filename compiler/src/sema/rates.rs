@@ -428,8 +428,11 @@ impl Analysis<'_> {
                     value_span,
                     "one value per light",
                 );
+                let target =
+                    if is_result { "the shader returns one value" } else { "declared without `perlight`" };
                 diags.push(
                     with_origin(d, "per-light because of this".into())
+                        .with_label(decl_span, target)
                         .with_help("sum it over the lights with `integrate(...)`"),
                 );
                 continue;

@@ -193,6 +193,24 @@ impl Lowerer<'_> {
                         converted.push(self.coerce(arg, param, "the parameter")?);
                     }
                 }
+                // Space names given as literals are checked here; others are known per draw.
+                if matches!(b.name, "transform" | "vtransform" | "ntransform" | "ctransform") {
+                    let colour = b.name == "ctransform";
+                    let literals: Vec<(smol_str::SmolStr, Span)> = converted
+                        .iter()
+                        .filter_map(|&a| match &self.expr_ref(a).kind {
+                            ExprKind::Literal(crate::ir::Literal::String(name)) => {
+                                Some((name.clone(), self.span_of(a)))
+                            }
+                            _ => None,
+                        })
+                        .collect();
+                    for (name, at) in literals {
+                        if !self.known_space(&name, at, colour) {
+                            return None;
+                        }
+                    }
+                }
                 Some(self.push_expr(ExprKind::Builtin(b, converted), b.ret, span))
             }
         }

@@ -642,7 +642,6 @@ impl Lowerer<'_> {
             return None;
         };
         let Some((name, space_span)) = space else { return Some(value) };
-        let known: &[&str] = if to.base == Base::Color { COLOR_SPACES } else { SPACES };
         if !(to.base.is_triple() || to.base == Base::Matrix4) || to.base == Base::Float3 {
             self.error(Diagnostic::error(
                 Code::UnknownSpace,
@@ -652,24 +651,30 @@ impl Lowerer<'_> {
             ));
             return None;
         }
-        if !known.contains(&name.as_str()) {
-            let mut d = Diagnostic::error(
-                Code::UnknownSpace,
-                format!(
-                    "unknown {} space \"{name}\"",
-                    if to.base == Base::Color { "colour" } else { "coordinate" }
-                ),
-                *space_span,
-                "not a known space",
-            )
-            .with_note(format!("the spaces are {}", known.join(", ")));
-            if let Some(close) = suggest(name, known.iter().copied()) {
-                d = d.with_help(format!("did you mean \"{close}\"?"));
-            }
-            self.error(d);
+        if !self.known_space(name, *space_span, to.base == Base::Color) {
             return None;
         }
         Some(self.push_expr(ExprKind::FromSpace { space: name.into(), value }, to, span))
+    }
+
+    /// Checks a space name, reporting an unknown one with the list and a likely correction.
+    pub(super) fn known_space(&mut self, name: &str, span: crate::source::Span, colour: bool) -> bool {
+        let known: &[&str] = if colour { COLOR_SPACES } else { SPACES };
+        if known.contains(&name) {
+            return true;
+        }
+        let mut d = Diagnostic::error(
+            Code::UnknownSpace,
+            format!("unknown {} space \"{name}\"", if colour { "colour" } else { "coordinate" }),
+            span,
+            "not a known space",
+        )
+        .with_note(format!("the spaces are {}", known.join(", ")));
+        if let Some(close) = suggest(name, known.iter().copied()) {
+            d = d.with_help(format!("did you mean \"{close}\"?"));
+        }
+        self.error(d);
+        false
     }
 
     fn index(&mut self, base: ExprId, index: ExprId, span: crate::source::Span) -> Option<ExprId> {

@@ -33,8 +33,6 @@ pub enum Scope {
     /// In a surface shader only inside `illuminance` (one value per light: `L`, `Cl`); in Stanford
     /// surface shaders anywhere, as a `perlight` value.
     PerLight,
-    /// In a light shader only inside `illuminate` or `solar`.
-    Emission,
 }
 
 /// A predefined variable.

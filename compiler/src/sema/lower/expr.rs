@@ -208,10 +208,9 @@ impl Lowerer<'_> {
         let inside = match g.scope {
             Scope::Anywhere => true,
             Scope::PerLight => self.stanford || self.light_loop == LightLoop::Illuminance,
-            Scope::Emission => self.light_loop == LightLoop::Emission,
         };
         if !inside {
-            let construct = if g.scope == Scope::PerLight { "illuminance" } else { "illuminate` or `solar" };
+            let construct = "illuminance";
             self.error(
                 Diagnostic::error(
                     Code::OutsideLightLoop,

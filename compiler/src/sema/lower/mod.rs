@@ -28,8 +28,6 @@ enum LightLoop {
     None,
     /// Inside `illuminance` (surface shaders).
     Illuminance,
-    /// Inside `illuminate` or `solar` (light shaders).
-    Emission,
 }
 
 /// A function being inlined.

@@ -264,9 +264,7 @@ impl Lowerer<'_> {
                     return;
                 }
                 let args = self.args(args, out);
-                let saved = std::mem::replace(&mut self.light_loop, LightLoop::Emission);
                 let body = self.sub_block(body);
-                self.light_loop = saved;
                 if let Some(args) = args {
                     out.push(Stmt::Emit { solar, args, body });
                 }

@@ -213,6 +213,30 @@ fn deep_nesting_is_refused_not_overflowed() {
 }
 
 #[test]
+fn long_operator_chains_are_refused_not_overflowed() {
+    // A chain of n operators is a tree n deep; these would overflow the stack when walked.
+    for src in [
+        format!("surface s() {{ float x = 1{}; }}", " + 1".repeat(100_000)),
+        format!("surface s() {{ float x = {}1; }}", "- ".repeat(100_000)),
+        format!("surface s() {{ float x; {} x = 1; }}", "if (x > 0) ".repeat(100_000)),
+        format!("surface s() {{ float x; if (x > 0) x = 1; {} }}", "else if (x > 1) x = 2; ".repeat(100_000)),
+    ] {
+        let checked = check_source("long.sl", &src, &MemoryLoader::default());
+        let codes: Vec<&str> = checked.diagnostics.iter().map(|d| d.code.as_str()).collect();
+        assert_eq!(codes, ["E0315"]);
+    }
+    // A long statement under the limit is fine, and the limit is per statement.
+    let fine = format!(
+        "surface s() {{ float x = 1{}; {} if (x > 0) x = 0; {} }}",
+        " + 1".repeat(1000),
+        "x += 1; ".repeat(2000),
+        "else if (x > 1) x = 1; ".repeat(500)
+    );
+    let checked = check_source("fine.sl", &fine, &MemoryLoader::default());
+    assert!(checked.diagnostics.is_empty(), "{:?}", checked.diagnostics.iter().next());
+}
+
+#[test]
 fn macro_bombs_are_stopped() {
     // Each level doubles the expansion: 2^40 tokens if nothing stopped it.
     let mut src = String::from("#define A0 x\n");

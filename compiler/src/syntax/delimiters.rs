@@ -1,12 +1,25 @@
 //! Bracket balance, checked before parsing: an unclosed `{` or a stray `)` is reported once, with
-//! the opener it fails to match, instead of as a cascade of parse errors.
+//! the opener it fails to match, instead of as a cascade of parse errors. The same pass bounds how
+//! deep a tree the parser can build: brackets nest at most [`MAX_NESTING`] deep and a statement has
+//! at most [`MAX_OPERATORS`] operators, because later stages walk (and drop) the tree recursively.
 
 use crate::diag::{Code, Diagnostic};
 use crate::syntax::lexer::Token;
 use crate::syntax::token::TokenKind;
 
-/// Brackets nested deeper than this are refused: later stages walk the tree recursively.
+/// Brackets nested deeper than this are refused.
 pub const MAX_NESTING: usize = 256;
+
+/// A statement with more operators and control keywords than this is refused, and so is a block
+/// with more `else` branches: an operator chain, `if if if ...` or an `else if` chain is a tree as
+/// deep as it is long.
+pub const MAX_OPERATORS: usize = 1024;
+
+/// Tokens that can add a level to the tree: operators, and the keywords of nested statements.
+fn adds_depth(kind: TokenKind) -> bool {
+    use TokenKind::*;
+    kind.is_operator() || matches!(kind, If | While | For | Illuminance | Illuminate | Solar | Gather)
+}
 
 fn closer_of(open: TokenKind) -> TokenKind {
     match open {
@@ -24,9 +37,54 @@ fn symbol(kind: TokenKind) -> &'static str {
 pub fn check(tokens: &[Token]) -> Vec<Diagnostic> {
     let mut diags = Vec::new();
     let mut open: Vec<Token> = Vec::new();
+    let mut operators = 0usize;
+    let mut statement_start: Option<Token> = None;
+    // `else` branches counted per brace level (the file level first).
+    let mut elses: Vec<usize> = vec![0];
     for &t in tokens {
+        if t.kind == TokenKind::Semi {
+            operators = 0;
+            statement_start = None;
+            continue;
+        }
+        statement_start.get_or_insert(t);
+        if t.kind == TokenKind::Else {
+            let count = elses.last_mut().expect("the file level is always there");
+            *count += 1;
+            if *count > MAX_OPERATORS {
+                diags.push(
+                    Diagnostic::error(
+                        Code::ResourceLimit,
+                        format!("more than {MAX_OPERATORS} `else` branches in one block"),
+                        t.span,
+                        "branch limit reached here",
+                    )
+                    .with_help("look the case up in an array, or split the chain into blocks"),
+                );
+                return diags;
+            }
+        }
+        if adds_depth(t.kind) {
+            operators += 1;
+            if operators > MAX_OPERATORS {
+                diags.push(
+                    Diagnostic::error(
+                        Code::ResourceLimit,
+                        format!("a statement with more than {MAX_OPERATORS} operators or nested statements"),
+                        t.span,
+                        "operator limit reached here",
+                    )
+                    .with_label(statement_start.map_or(t.span, |s| s.span), "the statement starts here")
+                    .with_help("split the computation into several statements with intermediate variables"),
+                );
+                return diags;
+            }
+        }
         match t.kind {
             TokenKind::LParen | TokenKind::LBracket | TokenKind::LBrace => {
+                if t.kind == TokenKind::LBrace {
+                    elses.push(0);
+                }
                 open.push(t);
                 if open.len() > MAX_NESTING {
                     diags.push(
@@ -44,6 +102,9 @@ pub fn check(tokens: &[Token]) -> Vec<Diagnostic> {
             TokenKind::RParen | TokenKind::RBracket | TokenKind::RBrace => match open.last() {
                 Some(&o) if closer_of(o.kind) == t.kind => {
                     open.pop();
+                    if t.kind == TokenKind::RBrace {
+                        elses.pop();
+                    }
                 }
                 Some(&o) => {
                     let d = Diagnostic::error(

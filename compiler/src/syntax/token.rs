@@ -360,6 +360,50 @@ impl TokenKind {
         })
     }
 
+    /// Whether this is an operator (unary, binary, assignment, `?`, `++`): each can add a level to
+    /// an expression tree.
+    pub fn is_operator(self) -> bool {
+        use TokenKind::*;
+        matches!(
+            self,
+            Question
+                | Plus
+                | Minus
+                | Star
+                | Slash
+                | Percent
+                | Caret
+                | Amp
+                | Pipe
+                | Tilde
+                | Bang
+                | Lt
+                | Gt
+                | Le
+                | Ge
+                | EqEq
+                | Ne
+                | AndAnd
+                | OrOr
+                | Shl
+                | Shr
+                | Eq
+                | PlusEq
+                | MinusEq
+                | StarEq
+                | SlashEq
+                | PercentEq
+                | AmpEq
+                | PipeEq
+                | CaretEq
+                | ShlEq
+                | ShrEq
+                | PlusPlus
+                | MinusMinus
+                | Dot
+        )
+    }
+
     /// Whether this is a keyword (a word that cannot be a name).
     pub fn is_keyword(self) -> bool {
         use TokenKind::*;

@@ -51,6 +51,12 @@ impl Lowerer<'_> {
     /// Lowers an expression; `expected` is the type the context wants (for tuples and for the
     /// return-type choice of overloads). Effects are appended to `out`.
     pub(super) fn expr(&mut self, e: &ast::Expr, expected: Option<Type>, out: &mut Block) -> Option<ExprId> {
+        // Expressions nest as deep as the source's operator chains (up to the front end's limits);
+        // grow the stack instead of overflowing it, whatever thread the compiler runs on.
+        stacker::maybe_grow(64 * 1024, 1024 * 1024, || self.expr_here(e, expected, out))
+    }
+
+    fn expr_here(&mut self, e: &ast::Expr, expected: Option<Type>, out: &mut Block) -> Option<ExprId> {
         use ast::ExprKind as E;
         let span = e.span;
         match &e.kind {

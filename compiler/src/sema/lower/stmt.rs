@@ -121,6 +121,12 @@ impl Lowerer<'_> {
     }
 
     fn stmt(&mut self, s: &ast::Stmt, out: &mut Block) {
+        // Statements nest as deep as the source's `if` and `else if` chains (within the front
+        // end's limits): grow the stack rather than overflow it.
+        stacker::maybe_grow(64 * 1024, 1024 * 1024, || self.stmt_here(s, out))
+    }
+
+    fn stmt_here(&mut self, s: &ast::Stmt, out: &mut Block) {
         match &s.kind {
             StmtKind::Block(b) => self.block(&b.stmts, out),
             StmtKind::Decl(d) => self.declaration(d, out),

@@ -113,7 +113,7 @@ codes! {
     InvalidLoopLevel = "E0313",
     /// `else` with no `if` before it.
     ElseWithoutIf = "E0314",
-    /// The source is larger or more deeply nested than the compiler accepts.
+    /// The source nests deeper than the compiler accepts (brackets, operator chains, `else` chains).
     ResourceLimit = "E0315",
 
     // Unsupported RenderMan features.

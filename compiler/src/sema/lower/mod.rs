@@ -91,25 +91,7 @@ pub(super) fn lower_shader(
         ShaderStyle::RenderMan => (false, Type::VOID),
         ShaderStyle::Stanford { return_type } => (true, Type::of(Base::from_ast(return_type.name))),
     };
-    let mut l = Lowerer {
-        diags,
-        shared,
-        failed: false,
-        standalone: false,
-        functions,
-        kind: shader.kind,
-        stanford,
-        locals: Vec::new(),
-        exprs: Vec::new(),
-        scopes: vec![FxHashMap::default()],
-        local_functions: Vec::new(),
-        frames: Vec::new(),
-        loops: 0,
-        light_loop: LightLoop::None,
-        no_effects: 0,
-        result_local: None,
-        result_type,
-    };
+    let mut l = Lowerer::new(diags, shared, functions, shader.kind, stanford, result_type);
     let mut body = Vec::new();
     for decl in globals {
         l.declaration(decl, &mut body);
@@ -165,26 +147,10 @@ pub(super) fn check_function(
     shared: &mut Shared,
     diags: &mut Diagnostics,
 ) {
-    let mut l = Lowerer {
-        diags,
-        shared,
-        failed: false,
-        standalone: false,
-        functions,
-        kind: f.context.map_or(ShaderKind::Surface, |c| c.0),
-        // Only Stanford style prefixes functions with a shader kind.
-        stanford: stanford || f.context.is_some(),
-        locals: Vec::new(),
-        exprs: Vec::new(),
-        scopes: vec![FxHashMap::default()],
-        local_functions: Vec::new(),
-        frames: Vec::new(),
-        loops: 0,
-        light_loop: LightLoop::None,
-        no_effects: 0,
-        result_local: None,
-        result_type: Type::VOID,
-    };
+    // Only Stanford style prefixes functions with a shader kind.
+    let stanford = stanford || f.context.is_some();
+    let kind = f.context.map_or(ShaderKind::Surface, |c| c.0);
+    let mut l = Lowerer::new(diags, shared, functions, kind, stanford, Type::VOID);
     let mut body = Vec::new();
     let args: Vec<Option<ExprId>> = f
         .params
@@ -196,6 +162,37 @@ pub(super) fn check_function(
         .collect();
     l.standalone = true;
     l.inline_body(f, &args, f.span, None, &mut body);
+}
+
+impl<'a> Lowerer<'a> {
+    fn new(
+        diags: &'a mut Diagnostics,
+        shared: &'a mut Shared,
+        functions: &'a FunctionTable<'a>,
+        kind: ShaderKind,
+        stanford: bool,
+        result_type: Type,
+    ) -> Lowerer<'a> {
+        Lowerer {
+            diags,
+            shared,
+            failed: false,
+            standalone: false,
+            functions,
+            kind,
+            stanford,
+            locals: Vec::new(),
+            exprs: Vec::new(),
+            scopes: vec![FxHashMap::default()],
+            local_functions: Vec::new(),
+            frames: Vec::new(),
+            loops: 0,
+            light_loop: LightLoop::None,
+            no_effects: 0,
+            result_local: None,
+            result_type,
+        }
+    }
 }
 
 impl Lowerer<'_> {

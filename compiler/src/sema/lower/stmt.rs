@@ -153,14 +153,7 @@ impl Lowerer<'_> {
             StmtKind::While { cond, body } => {
                 let mut prelude = Vec::new();
                 let cond = self.expr(cond, Some(Type::BOOL), &mut prelude).and_then(|c| self.condition(c));
-                if !prelude.is_empty() {
-                    self.error(Diagnostic::error(
-                        Code::EffectInCondition,
-                        "a loop condition cannot assign",
-                        s.span,
-                        "the assignment would run once, not on every test",
-                    ));
-                }
+                self.no_effects_in_loop_condition(&prelude, s.span);
                 self.loops += 1;
                 let body = self.sub_block(body);
                 self.loops -= 1;
@@ -177,14 +170,7 @@ impl Lowerer<'_> {
                 let cond = cond
                     .as_ref()
                     .map(|c| self.expr(c, Some(Type::BOOL), &mut prelude).and_then(|c| self.condition(c)));
-                if !prelude.is_empty() {
-                    self.error(Diagnostic::error(
-                        Code::EffectInCondition,
-                        "a loop condition cannot assign",
-                        s.span,
-                        "the assignment would run once, not on every test",
-                    ));
-                }
+                self.no_effects_in_loop_condition(&prelude, s.span);
                 let mut step_block = Vec::new();
                 if let Some(step) = step {
                     self.expr(step, None, &mut step_block);
@@ -275,6 +261,18 @@ impl Lowerer<'_> {
                     out.push(Stmt::Emit { solar, args, body });
                 }
             }
+        }
+    }
+
+    /// A loop condition's effects would be hoisted out of the loop and run once: refuse them.
+    fn no_effects_in_loop_condition(&mut self, prelude: &Block, span: crate::source::Span) {
+        if !prelude.is_empty() {
+            self.error(Diagnostic::error(
+                Code::EffectInCondition,
+                "a loop condition cannot assign",
+                span,
+                "the assignment would run once, not on every test",
+            ));
         }
     }
 

@@ -130,8 +130,7 @@ impl Lowerer<'_> {
                     );
                     return None;
                 };
-                let a = self.coerce(a, ty, "the result")?;
-                let b = self.coerce(b, ty, "the result")?;
+                let (a, b) = self.coerce_both(a, b, ty, "the result")?;
                 Some(self.push_expr(ExprKind::Select(c, a, b), ty, span))
             }
             E::Call { callee, args } => self.call(callee, args, expected, span, out),
@@ -301,8 +300,7 @@ impl Lowerer<'_> {
                 let Some(common) = convert::common_type(ta, tb).filter(|t| t.base != Base::Texref) else {
                     return self.invalid_operands(op, a, b, None);
                 };
-                let a = self.coerce(a, common, "the comparison")?;
-                let b = self.coerce(b, common, "the comparison")?;
+                let (a, b) = self.coerce_both(a, b, common, "the comparison")?;
                 let op = if op == B::Eq { BinaryOp::Eq } else { BinaryOp::Ne };
                 Some(self.push_expr(ExprKind::Binary(op, a, b), Type::BOOL, span))
             }
@@ -317,8 +315,7 @@ impl Lowerer<'_> {
                         Some("ordering compares numbers; compare lengths or components"),
                     );
                 };
-                let a = self.coerce(a, common, "the comparison")?;
-                let b = self.coerce(b, common, "the comparison")?;
+                let (a, b) = self.coerce_both(a, b, common, "the comparison")?;
                 let op = match op {
                     B::Lt => BinaryOp::Lt,
                     B::Le => BinaryOp::Le,
@@ -368,8 +365,7 @@ impl Lowerer<'_> {
                 } else {
                     Type::of(Base::Vector)
                 };
-                let a = self.coerce(a, ty, "the operand")?;
-                let b = self.coerce(b, ty, "the operand")?;
+                let (a, b) = self.coerce_both(a, b, ty, "the operand")?;
                 Some(self.push_expr(ExprKind::Binary(BinaryOp::Cross, a, b), ty, span))
             }
             B::Dot => {
@@ -384,8 +380,7 @@ impl Lowerer<'_> {
                         Some("`.` is the dot product of two vectors or colours"),
                     );
                 };
-                let a = self.coerce(a, common, "the operand")?;
-                let b = self.coerce(b, common, "the operand")?;
+                let (a, b) = self.coerce_both(a, b, common, "the operand")?;
                 Some(self.push_expr(ExprKind::Binary(BinaryOp::Dot, a, b), Type::FLOAT, span))
             }
             B::Add | B::Sub | B::Mul | B::Div => self.arithmetic(op, a, b, span),
@@ -439,8 +434,7 @@ impl Lowerer<'_> {
             };
             return self.invalid_operands(op, a, b, help);
         };
-        let a = self.coerce(a, common, "the operand")?;
-        let b = self.coerce(b, common, "the operand")?;
+        let (a, b) = self.coerce_both(a, b, common, "the operand")?;
         // RenderMan: point - point is a vector.
         let result = if op == B::Sub && xa == Base::Point && xb == Base::Point {
             Type::of(Base::Vector)
@@ -448,6 +442,13 @@ impl Lowerer<'_> {
             common
         };
         Some(self.push_expr(ExprKind::Binary(ir_op, a, b), result, span))
+    }
+
+    /// Both operands converted to `to`.
+    fn coerce_both(&mut self, a: ExprId, b: ExprId, to: Type, what: &str) -> Option<(ExprId, ExprId)> {
+        let a = self.coerce(a, to, what);
+        let b = self.coerce(b, to, what);
+        Some((a?, b?))
     }
 
     /// The place an lvalue expression denotes, or `None` (reported) if it is not assignable.

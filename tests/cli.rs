@@ -106,3 +106,22 @@ fn usage_errors_exit_non_zero() {
     let out = patina(&["frobnicate"]);
     assert!(!out.status.success());
 }
+
+#[test]
+fn explain_prints_types_rates_and_stages() {
+    let out = patina(&["explain", &example("aniso.sl")]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let row = |name: &str| -> Vec<String> {
+        let line =
+            text.lines().find(|l| l.trim_start().starts_with(&format!("{name} "))).unwrap_or_else(|| {
+                panic!("no row for `{name}` in:\n{text}");
+            });
+        line.split("  ").map(str::trim).filter(|s| !s.is_empty()).map(String::from).collect()
+    };
+    assert_eq!(row("base_uv"), ["base_uv", "float4", "vertex (declared)", "vertex stage"]);
+    assert_eq!(row("lit"), ["lit", "float4", "perlight fragment (inferred)", "fragment stage"]);
+    assert_eq!(row("ka"), ["ka", "float4", "constant (declared)", "compile time"]);
+    assert_eq!(row("ambient_color"), ["ambient_color", "float4", "primitive group", "host (once per draw)"]);
+    assert!(text.contains("surface shader `aniso` (Stanford style)"));
+}

@@ -54,6 +54,8 @@ pub struct Local {
     pub kind: LocalKind,
     /// Where it was declared.
     pub span: Span,
+    /// The inlined function it belongs to (its parameters and variables), if any.
+    pub function: Option<SmolStr>,
 }
 
 /// A literal value.

@@ -48,38 +48,35 @@ fn shader_report(shader: &Shader, out: &mut String) {
     if shader.stanford {
         let _ = writeln!(out, "  returns {}", shader.result);
     }
-    let _ = writeln!(out, "  parameters:");
-    if shader.params.is_empty() {
-        let _ = writeln!(out, "    (none)");
-    }
+    // One row per parameter or variable: name, type, rate, stage, in columns as wide as needed.
+    let mut rows: Vec<(bool, [String; 4])> = Vec::new();
     for &p in &shader.params {
         let l = shader.local(p);
         let output = matches!(l.kind, LocalKind::Param { output: true, .. });
-        let _ = writeln!(
-            out,
-            "    {:<16} {:<10} {:<24} {}{}",
-            l.name,
-            l.ty.to_string(),
-            l.rate.to_string(),
-            stage(l.rate, shader.stanford),
-            if output { ", output" } else { "" }
-        );
+        let stage = format!("{}{}", stage(l.rate, shader.stanford), if output { ", output" } else { "" });
+        rows.push((true, [l.name.to_string(), l.ty.to_string(), l.rate.to_string(), stage]));
     }
-    let _ = writeln!(out, "  variables:");
-    let vars: Vec<_> = shader.locals.iter().filter(|l| l.kind == LocalKind::Var).collect();
-    if vars.is_empty() {
-        let _ = writeln!(out, "    (none)");
-    }
-    for l in vars {
+    for l in shader.locals.iter().filter(|l| l.kind == LocalKind::Var) {
         let how = if l.declared { "declared" } else { "inferred" };
-        let _ = writeln!(
-            out,
-            "    {:<16} {:<10} {:<24} {}",
-            l.name,
-            l.ty.to_string(),
-            format!("{} ({how})", l.rate),
-            stage(l.rate, shader.stanford)
-        );
+        let name = match &l.function {
+            Some(f) => format!("{} (in {f})", l.name),
+            None => l.name.to_string(),
+        };
+        let rate = format!("{} ({how})", l.rate);
+        rows.push((false, [name, l.ty.to_string(), rate, stage(l.rate, shader.stanford).to_string()]));
+    }
+    let width = |i: usize| rows.iter().map(|r| r.1[i].len()).max().unwrap_or(0);
+    let (w0, w1, w2) = (width(0), width(1), width(2));
+    for (heading, params) in [("parameters", true), ("variables", false)] {
+        let _ = writeln!(out, "  {heading}:");
+        let mut any = false;
+        for (_, [name, ty, rate, stage]) in rows.iter().filter(|r| r.0 == params) {
+            let _ = writeln!(out, "    {name:<w0$}  {ty:<w1$}  {rate:<w2$}  {stage}");
+            any = true;
+        }
+        if !any {
+            let _ = writeln!(out, "    (none)");
+        }
     }
     let mut per_stage = std::collections::BTreeMap::new();
     for e in &shader.exprs {

@@ -241,7 +241,8 @@ impl Lowerer<'_> {
         span: Span,
     ) -> LocalId {
         let id = LocalId(self.locals.len() as u32);
-        self.locals.push(Local { name, ty, rate, declared, kind, span });
+        let function = self.frames.last().map(|f| f.name.clone());
+        self.locals.push(Local { name, ty, rate, declared, kind, span, function });
         id
     }
 

@@ -383,6 +383,8 @@ impl Lowerer<'_> {
             let ty = declared_type(p.ty, p.array.as_ref());
             let (rate, declared) = self.declared_rate_function_param(&p.qualifiers);
             let id = self.new_local(p.name.name.clone(), ty, rate, declared, LocalKind::Var, p.name.span);
+            // Created before the callee's frame is pushed, but the callee's own.
+            self.locals[id.0 as usize].function = Some(f.name.name.clone());
             if let Some(arg) = arg {
                 let arg_span = self.span_of(*arg);
                 if let Some(value) = self.coerce(*arg, ty, "the parameter") {

@@ -1,6 +1,7 @@
 //! Patina's compiler: shading-language source to diagnostics and, stage by stage, to WGSL and the
 //! CPU interpreter. See ARCHITECTURE.md at the repository root for the pipeline.
 
+pub mod backend;
 pub mod diag;
 pub mod ir;
 pub mod sema;

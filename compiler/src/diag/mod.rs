@@ -8,7 +8,7 @@ mod code;
 mod render;
 
 pub use code::Code;
-pub use render::{Format, render_json, render_text, to_codespan};
+pub use render::{render_json, render_text, to_codespan};
 
 use crate::source::Span;
 

@@ -6,15 +6,6 @@ use codespan_reporting::term;
 use super::{Diagnostic, Severity};
 use crate::source::{FileId, SourceMap, Span};
 
-/// How the command line prints diagnostics.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// The familiar compiler layout, with source snippets.
-    Human,
-    /// One JSON object per line.
-    Json,
-}
-
 /// At most this many macro-expansion labels, and as many include labels, are shown per diagnostic.
 const MAX_CONTEXT_LABELS: usize = 4;
 

@@ -169,9 +169,6 @@ impl Analysis<'_> {
             match stmt {
                 Stmt::Store { place, value, span } => {
                     self.store(place, *value, control, control_origin, *span, in_light_loop);
-                    if let Place::Index(..) = place {
-                        // Indices are read too; their rates flow into the stored element's variable.
-                    }
                 }
                 Stmt::Eval(id) => {
                     // Built-ins with output parameters write their locals at the call's rate.

@@ -236,7 +236,7 @@ fn unexpected(at: usize, expected: &[String], tokens: &[Token], sources: &Source
     let before = prev.map(|p| Token { span: outside_expansion(sources, p.span, tok.span), ..p });
     if expects(";")
         && let Some(p) = before
-        && (tok.kind == TokenKind::RBrace || line_of(sources, p) < line_of(sources, tok))
+        && (tok.kind == TokenKind::RBrace || starts_later_line(sources, p, tok))
     {
         return Diagnostic::error(
             Code::MissingSemicolon,
@@ -347,9 +347,14 @@ fn is_qualifier(kind: TokenKind) -> bool {
     matches!(kind, Uniform | Varying | Output | Extern | Constant | Vertex | Fragment | Perlight)
 }
 
-fn line_of(sources: &SourceMap, t: Token) -> usize {
-    let span = sources.call_site(t.span);
-    sources.file(span.file).line_index(span.start as usize) + span.file.index() * 1_000_000
+/// Whether `later` is on a later line than `earlier`, both lifted out of macro expansions to the
+/// text the user wrote (a token from another file counts as a new line).
+fn starts_later_line(sources: &SourceMap, earlier: Token, later: Token) -> bool {
+    let (a, b) = (sources.call_site(earlier.span), sources.call_site(later.span));
+    a.file != b.file || {
+        let file = sources.file(a.file);
+        file.line_index(a.start as usize) < file.line_index(b.start as usize)
+    }
 }
 
 /// `x = {a, b}, c, d;`: a vector constructor closed before its last components. The parser sees a

@@ -956,3 +956,18 @@ fn an_exact_match_beats_a_conversion() {
     assert_eq!(sig, "float length(float3)");
     assert!(matches!(s.expr(args[0]).kind, ExprKind::Local(_)));
 }
+
+#[test]
+fn a_store_at_a_varying_index_makes_the_array_varying() {
+    // Which element is written depends on the index, as if the store were under a condition on it.
+    let s = shader(&lines(&[
+        "surface shader float4 pick(vertex float4 uv)",
+        "{",
+        "    float weights[4] = {0, 0, 0, 0};",
+        "    weights[int(uv[0] * 3)] = 1;",
+        "    return {weights[0], weights[1], weights[2], weights[3]};",
+        "}",
+    ]));
+    let weights = s.locals.iter().find(|l| l.name == "weights").expect("the array");
+    assert_eq!(weights.rate, Rate::VERTEX);
+}

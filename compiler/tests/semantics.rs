@@ -1181,3 +1181,18 @@ fn per_light_value_returned_from_a_stanford_shader() {
     assert!(text.contains("the shader returns one value"), "{text}");
     insta::assert_snapshot!("per_light_value_returned_from_a_stanford_shader", text);
 }
+
+#[test]
+fn uniform_array_written_at_a_varying_index() {
+    let (codes, text) = run(&lines(&[
+        "surface bands()",
+        "{",
+        "    uniform float hits[4] = {0, 0, 0, 0};",
+        "    hits[int(s * 3)] = 1;",
+        "    Ci = hits[0];",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0605"]);
+    assert!(text.contains("assigned at a varying index"), "{text}");
+    insta::assert_snapshot!("uniform_array_written_at_a_varying_index", text);
+}

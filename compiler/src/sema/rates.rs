@@ -41,6 +41,8 @@ struct Analysis<'s> {
     origins: Vec<Origin>,
     local_origins: Vec<Origin>,
     changed: bool,
+    /// Index expressions that made a store depend on their rate (so messages can say "index").
+    index_origins: rustc_hash::FxHashSet<Span>,
     /// Stores to check once rates are final: (place root, value, control rate, control origin, store span).
     checks: Vec<(Target, ExprId, Rate, Option<Span>, Span)>,
 }
@@ -72,6 +74,7 @@ pub fn infer(shader: &mut Shader, diags: &mut Diagnostics) {
         local_origins,
         shader,
         changed: true,
+        index_origins: Default::default(),
         checks: Vec::new(),
     };
     let mut rounds = 0;
@@ -309,6 +312,19 @@ impl Analysis<'_> {
         span: Span,
         in_light_loop: bool,
     ) {
+        // Which element is written depends on the indices: they act like a condition on the store.
+        let (mut control, mut origin) = (control, origin);
+        let mut at = place;
+        while let Place::Index(inner, index) = at {
+            let r = self.rate(*index);
+            if r.frequency > control.frequency {
+                let index_span = self.shader.exprs[index.0 as usize].span;
+                self.index_origins.insert(index_span);
+                origin = Some(index_span);
+            }
+            control = control.join(Rate { perlight: false, ..r });
+            at = inner;
+        }
         let mut value_rate = self.rate(value);
         // Inside `illuminance`, storing into a variable accumulates over the lights: the variable
         // holds one value, not one per light (RenderMan's semantics).
@@ -478,21 +494,24 @@ impl Analysis<'_> {
             }
             if !control.fits_in(Rate { perlight: true, ..declared }) {
                 let condition = control_origin.unwrap_or(span);
+                let by_index = self.index_origins.contains(&condition);
+                let what = if by_index { "index" } else { "condition" };
                 diags.push(
                     Diagnostic::error(
                         Code::ControlDependence,
                         format!(
-                            "`{name}` is declared {} but assigned under a {} condition",
+                            "`{name}` is declared {} but assigned {} a {} {what}",
                             word(declared),
+                            if by_index { "at" } else { "under" },
                             word(control)
                         ),
                         span,
-                        format!("this assignment depends on a {} condition", word(control)),
+                        format!("this assignment depends on a {} {what}", word(control)),
                     )
-                    .with_label(condition, format!("this condition is {}", word(control)))
+                    .with_label(condition, format!("this {what} is {}", word(control)))
                     .with_label(decl_span, format!("`{name}` is declared {} here", word(declared)))
                     .with_help(format!(
-                        "declare `{name}` {}, or make the condition {}",
+                        "declare `{name}` {}, or make the {what} {}",
                         if stanford { control.frequency.name() } else { "varying" },
                         word(declared)
                     )),

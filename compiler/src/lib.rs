@@ -4,6 +4,7 @@
 pub mod backend;
 pub mod diag;
 pub mod ir;
+pub mod opt;
 pub mod sema;
 pub mod source;
 pub mod stdlib;

@@ -184,6 +184,17 @@ codes! {
     IntegrateNotPerlight = "E0606",
     /// A parameter default that is not constant or primitive-group rate.
     DefaultRate = "E0607",
+
+    // Evaluation.
+    /// A built-in that needs something the evaluation was not given (a texture, a light binding)
+    /// or that is not implemented by this backend yet.
+    NotExecutable = "E0701",
+    /// A loop that ran past the iteration budget.
+    IterationBudget = "E0702",
+    /// A parameter, input or output name that the shader does not have, or a value of the wrong size.
+    UnknownInput = "E0703",
+    /// An inconsistency between compiler stages: a bug in Patina, reported with the source position.
+    Internal = "E0799",
 }
 
 impl std::fmt::Display for Code {

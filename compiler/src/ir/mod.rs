@@ -5,6 +5,7 @@
 //! already inlined (each call is an [`Stmt::Inline`] block), so every expression has one type, one
 //! rate and one span. Expressions are pure; every effect is a statement.
 
+pub mod build;
 pub mod types;
 
 use smol_str::SmolStr;
@@ -129,6 +130,27 @@ pub enum BinaryOp {
     Or,
 }
 
+/// A shader input whose screen-space derivatives are supplied from outside the program: on the GPU
+/// `dpdx`/`dpdy` taken at the top of the fragment stage, on the CPU the rasterizer's (or the
+/// caller's) gradients. Derivatives of everything else follow from these by the chain rule
+/// (`opt::derivs`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Input {
+    /// A predefined variable (`P`, `s`, `u`, ...).
+    Global(&'static Global),
+    /// A parameter (a `varying` or `vertex` one: interpolated per fragment).
+    Param(LocalId),
+}
+
+/// A screen axis.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// Along the raster x axis (one pixel to the right).
+    X,
+    /// Along the raster y axis (one pixel down).
+    Y,
+}
+
 /// The expressions.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
@@ -160,6 +182,10 @@ pub enum ExprKind {
     Select(ExprId, ExprId, ExprId),
     /// A built-in function; `output` arguments are locals written by the call.
     Builtin(&'static Builtin, Vec<ExprId>),
+    /// The derivative of an input along a screen axis, as supplied from outside (made by
+    /// `opt::derivs`, never by the semantic stage). Its type is the input's, with `point` read as
+    /// `vector`.
+    Seed(Input, Axis),
 }
 
 /// An expression with its type, rate and span.

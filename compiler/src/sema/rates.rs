@@ -118,6 +118,7 @@ impl Analysis<'_> {
         };
         match &e.kind {
             ExprKind::Literal(_) => (Rate::CONSTANT, Origin { span, why: Why::Constant }),
+            ExprKind::Seed(..) => (Rate::FRAGMENT, Origin { span, why: Why::Derivative }),
             ExprKind::Local(l) => {
                 let local = &self.shader.locals[l.0 as usize];
                 // A declared variable's rate comes from its declaration: point there.

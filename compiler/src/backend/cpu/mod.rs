@@ -1,5 +1,15 @@
-//! The CPU interpreter. So far: `scalar`, the per-lane semantics of every exactly-defined operation,
-//! shared by the interpreter's f32 and f64 modes. The batch evaluator (structure-of-arrays registers,
-//! execution masks) builds on it.
+//! The CPU interpreter: the reference backend the GPU is measured against.
+//!
+//! `lower` scalarizes a shader's IR into [`code`]: instructions over uniform and varying registers
+//! with structured control flow. `exec` runs that code over batches of points with execution masks,
+//! in f32 or f64 ([`scalar::Real`]); `scalar` defines every per-lane operation. `eval` is the
+//! library API: compile a shader for a binding, set parameters, evaluate it at points.
 
+pub mod code;
+pub mod eval;
+pub mod exec;
+mod lower;
 pub mod scalar;
+
+pub use eval::{CpuProgram, EvalError, Evaluator, SlotId, SlotInfo};
+pub use lower::{Binding, LightBinding, SlotKind};

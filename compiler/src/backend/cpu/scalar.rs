@@ -39,21 +39,63 @@ pub trait Real:
     fn min(self, other: Self) -> Self;
     /// The larger operand; the other one when one is NaN.
     fn max(self, other: Self) -> Self;
+    /// Sine (radians).
+    fn sin(self) -> Self;
+    /// Cosine.
+    fn cos(self) -> Self;
+    /// Tangent.
+    fn tan(self) -> Self;
+    /// Arcsine.
+    fn asin(self) -> Self;
+    /// Arccosine.
+    fn acos(self) -> Self;
+    /// Arctangent.
+    fn atan(self) -> Self;
+    /// Four-quadrant arctangent of `self / x`.
+    fn atan2(self, x: Self) -> Self;
+    /// `e^self`.
+    fn exp(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
+    /// `self^y`.
+    fn powf(self, y: Self) -> Self;
+    /// The nearest value to an `i32`.
+    fn from_i32(x: i32) -> Self;
+    /// The nearest value to a `u32`.
+    fn from_u32(x: u32) -> Self;
     /// The value as an f64 (exact for both types).
     fn to_f64(self) -> f64;
     /// The nearest value to an f64.
     fn from_f64(x: f64) -> Self;
 }
 
+/// `floor` through an integer conversion, which compiles to a few vector instructions on x86-64
+/// without SSE4.1, where `f32::floor` is a library call per lane. Bit-identical to `floor`: values
+/// of magnitude 2^mantissa-bits and more (and infinities, NaN) are already integers and are returned
+/// as they are, and the sign is copied back so that `floor(-0.0)` is `-0.0`.
+macro_rules! floor_by_conversion {
+    ($t:ty, $int:ty, $x:expr) => {{
+        let x: $t = $x;
+        const INTEGRAL: $t = (1u64 << (<$t>::MANTISSA_DIGITS - 1)) as $t;
+        if x.abs() < INTEGRAL {
+            let t = x as $int as $t;
+            let t = if t > x { t - 1.0 } else { t };
+            t.copysign(x)
+        } else {
+            x
+        }
+    }};
+}
+
 macro_rules! real {
-    ($t:ty) => {
+    ($t:ty, $int:ty) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
             const TWO: Self = 2.0;
             const THREE: Self = 3.0;
             fn floor(self) -> Self {
-                <$t>::floor(self)
+                floor_by_conversion!($t, $int, self)
             }
             fn ceil(self) -> Self {
                 <$t>::ceil(self)
@@ -79,6 +121,42 @@ macro_rules! real {
             fn max(self, other: Self) -> Self {
                 <$t>::max(self, other)
             }
+            fn sin(self) -> Self {
+                <$t>::sin(self)
+            }
+            fn cos(self) -> Self {
+                <$t>::cos(self)
+            }
+            fn tan(self) -> Self {
+                <$t>::tan(self)
+            }
+            fn asin(self) -> Self {
+                <$t>::asin(self)
+            }
+            fn acos(self) -> Self {
+                <$t>::acos(self)
+            }
+            fn atan(self) -> Self {
+                <$t>::atan(self)
+            }
+            fn atan2(self, x: Self) -> Self {
+                <$t>::atan2(self, x)
+            }
+            fn exp(self) -> Self {
+                <$t>::exp(self)
+            }
+            fn ln(self) -> Self {
+                <$t>::ln(self)
+            }
+            fn powf(self, y: Self) -> Self {
+                <$t>::powf(self, y)
+            }
+            fn from_i32(x: i32) -> Self {
+                x as $t
+            }
+            fn from_u32(x: u32) -> Self {
+                x as $t
+            }
             fn to_f64(self) -> f64 {
                 self as f64
             }
@@ -89,8 +167,8 @@ macro_rules! real {
     };
 }
 
-real!(f32);
-real!(f64);
+real!(f32, i32);
+real!(f64, i64);
 
 /// WGSL `fract`: `x - floor(x)` (so `fract(-0.25) = 0.75`, and the result can round to 1).
 pub fn fract<R: Real>(x: R) -> R {
@@ -154,20 +232,16 @@ pub const U32_CLAMP_MAX: f32 = 4_294_967_040.0;
 /// WGSL float-to-`i32`: truncate toward zero after clamping to the f32 values that fit,
 /// `[-2^31, 2147483520]`; NaN gives 0.
 pub fn to_i32<R: Real>(x: R) -> i32 {
-    if x.is_nan() {
-        return 0;
-    }
-    let clamped = x.to_f64().clamp(-2_147_483_648.0, f64::from(I32_CLAMP_MAX));
-    clamped.trunc() as i32
+    // Rust's `as` truncates, saturates below at -2^31 and maps NaN to 0: only the upper clamp
+    // differs from WGSL. (No `trunc` call: this runs once per lane in hashing code.)
+    let y = x.to_f64();
+    if y > f64::from(I32_CLAMP_MAX) { I32_CLAMP_MAX as i32 } else { y as i32 }
 }
 
 /// WGSL float-to-`u32`: truncate toward zero after clamping to `[0, 4294967040]`; NaN gives 0.
 pub fn to_u32<R: Real>(x: R) -> u32 {
-    if x.is_nan() {
-        return 0;
-    }
-    let clamped = x.to_f64().clamp(0.0, f64::from(U32_CLAMP_MAX));
-    clamped.trunc() as u32
+    let y = x.to_f64();
+    if y > f64::from(U32_CLAMP_MAX) { U32_CLAMP_MAX as u32 } else { y as u32 }
 }
 
 /// WGSL `i32` division: wrapping; `x / 0 = x`, `MIN / -1 = MIN`.
@@ -267,6 +341,32 @@ mod tests {
         assert_eq!(fract(-1e-40f32), 1.0);
         for &x in GRID {
             assert!(!(x.is_finite() && fract(x) < 0.0), "fract({x}) is never negative");
+        }
+    }
+
+    /// `floor` by conversion must equal the library's on every kind of value: a sweep of bit
+    /// patterns (all exponents, both signs, NaN payloads) plus the grid, in both precisions.
+    #[test]
+    fn floor_by_conversion_is_bit_identical_to_std() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for _ in 0..200_000 {
+            let bits = next();
+            let x = f32::from_bits(bits as u32);
+            assert_eq!(Real::floor(x).to_bits(), x.floor().to_bits(), "floor({x:e})");
+            let y = f64::from_bits(bits);
+            assert_eq!(Real::floor(y).to_bits(), y.floor().to_bits(), "floor({y:e})");
+            // Values near integers, where the correction step matters.
+            let z = (bits % 2_000_001) as f32 / 1000.0 - 1000.0;
+            assert_eq!(Real::floor(z).to_bits(), z.floor().to_bits(), "floor({z})");
+        }
+        for &x in GRID {
+            assert!(same(Real::floor(x), x.floor()), "floor({x})");
         }
     }
 

@@ -120,6 +120,19 @@ pub fn builtins() -> &'static Builtins {
     })
 }
 
+/// The overload of `name` whose parameters are exactly `params` (no conversions): for later stages
+/// that build calls themselves. An array parameter of any length (`T[]`) takes any array of `T`,
+/// and a variadic overload takes any number of further arguments of its type.
+pub fn find(name: &str, params: &[Type]) -> Option<&'static Builtin> {
+    let fits = |want: Type, got: Type| {
+        want == got || (want.array == Some(0) && got.array.is_some() && want.base == got.base)
+    };
+    builtins().overloads(name).iter().find(|b| {
+        b.accepts_count(params.len())
+            && params.iter().enumerate().all(|(i, &got)| b.param_type(i).is_some_and(|p| fits(p.ty, got)))
+    })
+}
+
 fn base_named(name: &str) -> Option<Base> {
     Some(match name {
         "void" => Base::Void,
@@ -245,6 +258,18 @@ mod tests {
         assert!(mix.contains(&"color".to_string()) && mix.contains(&"float4".to_string()), "{mix:?}");
         let du = &table.overloads("Du")[0];
         assert_eq!(du.rate, RateRule::Derivative);
+    }
+
+    #[test]
+    fn find_matches_parameter_types_exactly() {
+        let (float, color, point) = (Type::FLOAT, Type::of(Base::Color), Type::of(Base::Point));
+        assert_eq!(find("mix", &[color, color, float]).map(|b| b.ret), Some(color));
+        assert!(find("mix", &[color, color, color]).is_none(), "no conversions");
+        assert_eq!(find("min", &[float, float, float, float]).map(|b| b.ret), Some(float));
+        let knots = Type { base: Base::Vector, array: Some(4) };
+        assert_eq!(find("spline", &[float, knots]).map(|b| b.ret), Some(Type::of(Base::Vector)));
+        assert_eq!(find("transform", &[Type::STRING, point]).map(|b| b.ret), Some(point));
+        assert!(find("nope", &[]).is_none());
     }
 
     #[test]

@@ -1,0 +1,351 @@
+//! What each instruction does to the registers. The per-lane arithmetic is `scalar`'s, so the f32
+//! and f64 modes and every operand shape share one definition of each operation.
+
+use super::kernels::{File, Lanes, View, map1, map2, map3};
+use super::{LANES, Machine, Mask};
+use crate::backend::cpu::code::{Binary, Compare, Convert, Inst, IntBinary, IntUnary, Reg, Ternary, Unary};
+use crate::backend::cpu::scalar::{self as s, Real};
+
+impl<F: Real> Machine<F> {
+    pub(super) fn inst(&mut self, inst: &Inst, mask: &Mask) {
+        match *inst {
+            Inst::Unary { op, dst, a } => float_unary(&mut self.floats, op, dst, a),
+            Inst::Binary { op, dst, a, b } => float_binary(&mut self.floats, op, dst, a, b),
+            Inst::Ternary { op, dst, a, b, c } => {
+                let file = &mut self.floats;
+                match op {
+                    Ternary::Mix => same_file3(file, dst, a, b, c, s::mix),
+                    Ternary::Clamp => same_file3(file, dst, a, b, c, s::clamp),
+                    Ternary::Smoothstep => same_file3(file, dst, a, b, c, s::smoothstep),
+                }
+            }
+            Inst::Compare { op, dst, a, b } => {
+                let f = |x: F, y: F| u32::from(compare(op, x, y));
+                cross2(&self.floats, &mut self.ints, dst, a, b, f);
+            }
+            Inst::IntUnary { op, dst, a } => {
+                let file = &mut self.ints;
+                match op {
+                    IntUnary::Neg => same_file1(file, dst, a, u32::wrapping_neg),
+                    IntUnary::Not => same_file1(file, dst, a, |x| !x),
+                    IntUnary::LogicalNot => same_file1(file, dst, a, |x| u32::from(x == 0)),
+                    IntUnary::Abs => same_file1(file, dst, a, |x| (x as i32).wrapping_abs() as u32),
+                }
+            }
+            Inst::IntBinary { op, dst, a, b } => int_binary(&mut self.ints, op, dst, a, b),
+            Inst::IntCompare { op, signed, dst, a, b } => {
+                if signed {
+                    same_file2(&mut self.ints, dst, a, b, |x, y| u32::from(compare(op, x as i32, y as i32)));
+                } else {
+                    same_file2(&mut self.ints, dst, a, b, |x, y| u32::from(compare(op, x, y)));
+                }
+            }
+            Inst::Convert { op, dst, a } => match op {
+                Convert::FloatToInt => cross1(&self.floats, &mut self.ints, dst, a, |x| s::to_i32(x) as u32),
+                Convert::FloatToUint => cross1(&self.floats, &mut self.ints, dst, a, s::to_u32),
+                Convert::FloatToBool => {
+                    cross1(&self.floats, &mut self.ints, dst, a, |x| u32::from(x != F::ZERO))
+                }
+                Convert::IntToFloat => {
+                    cross1(&self.ints, &mut self.floats, dst, a, |x| F::from_i32(x as i32))
+                }
+                Convert::UintToFloat => cross1(&self.ints, &mut self.floats, dst, a, F::from_u32),
+            },
+            Inst::Select { float: true, dst, cond, a, b } => {
+                select(&mut self.floats, dst, self.ints.read(cond), a, b);
+            }
+            Inst::Select { float: false, dst, cond, a, b } => {
+                // The condition is in the same file: copy it out first.
+                let cond = lanes_copy(&self.ints, cond);
+                select(&mut self.ints, dst, cond.as_lanes(), a, b);
+            }
+            Inst::Move { float: true, dst, src } => store(&mut self.floats, dst, src, mask),
+            Inst::Move { float: false, dst, src } => store(&mut self.ints, dst, src, mask),
+            Inst::Gather { float, dst, base, len, stride, index, signed } => {
+                let at = Clamp { len, stride, signed };
+                if float {
+                    gather(&mut self.floats, dst, base, self.ints.read(index), at);
+                } else {
+                    let index = lanes_copy(&self.ints, index);
+                    gather(&mut self.ints, dst, base, index.as_lanes(), at);
+                }
+            }
+            Inst::Scatter { float, base, len, stride, index, signed, src } => {
+                let at = Clamp { len, stride, signed };
+                if float {
+                    scatter(&mut self.floats, base, self.ints.read(index), src, at, mask);
+                } else {
+                    let index = lanes_copy(&self.ints, index);
+                    scatter(&mut self.ints, base, index.as_lanes(), src, at, mask);
+                }
+            }
+            Inst::Random { dst, site } => {
+                let first = self.first_point;
+                let d = &mut self.floats.varying[dst.index as usize];
+                for (lane, d) in d.iter_mut().enumerate() {
+                    *d = F::from_f64(random(first.wrapping_add(lane as u32), site));
+                }
+            }
+        }
+    }
+}
+
+fn compare<T: PartialOrd>(op: Compare, x: T, y: T) -> bool {
+    match op {
+        Compare::Eq => x == y,
+        Compare::Ne => x != y,
+        Compare::Lt => x < y,
+        Compare::Le => x <= y,
+        Compare::Gt => x > y,
+        Compare::Ge => x >= y,
+    }
+}
+
+fn float_unary<F: Real>(file: &mut File<F>, op: Unary, dst: Reg, a: Reg) {
+    // One call per arm, so that each operation gets its own (inlined, vectorizable) loop rather
+    // than a call through a function pointer per lane.
+    match op {
+        Unary::Neg => same_file1(file, dst, a, |x: F| -x),
+        Unary::Abs => same_file1(file, dst, a, F::abs),
+        Unary::Floor => same_file1(file, dst, a, F::floor),
+        Unary::Ceil => same_file1(file, dst, a, F::ceil),
+        Unary::Trunc => same_file1(file, dst, a, F::trunc),
+        Unary::Round => same_file1(file, dst, a, F::round_even),
+        Unary::Fract => same_file1(file, dst, a, s::fract),
+        Unary::Sign => same_file1(file, dst, a, s::sign),
+        Unary::Sqrt => same_file1(file, dst, a, F::sqrt),
+        Unary::InverseSqrt => same_file1(file, dst, a, s::inverse_sqrt),
+        Unary::Sin => same_file1(file, dst, a, F::sin),
+        Unary::Cos => same_file1(file, dst, a, F::cos),
+        Unary::Tan => same_file1(file, dst, a, F::tan),
+        Unary::Asin => same_file1(file, dst, a, F::asin),
+        Unary::Acos => same_file1(file, dst, a, F::acos),
+        Unary::Atan => same_file1(file, dst, a, F::atan),
+        Unary::Exp => same_file1(file, dst, a, F::exp),
+        Unary::Log => same_file1(file, dst, a, F::ln),
+    }
+}
+
+fn float_binary<F: Real>(file: &mut File<F>, op: Binary, dst: Reg, a: Reg, b: Reg) {
+    // The four commonest operations get their own loops so that they vectorize.
+    match op {
+        Binary::Add => same_file2(file, dst, a, b, |x, y| x + y),
+        Binary::Sub => same_file2(file, dst, a, b, |x, y| x - y),
+        Binary::Mul => same_file2(file, dst, a, b, |x, y| x * y),
+        Binary::Div => same_file2(file, dst, a, b, |x, y| x / y),
+        Binary::Min => same_file2(file, dst, a, b, F::min),
+        Binary::Max => same_file2(file, dst, a, b, F::max),
+        Binary::Pow => same_file2(file, dst, a, b, F::powf),
+        Binary::Atan2 => same_file2(file, dst, a, b, F::atan2),
+        Binary::Mod => same_file2(file, dst, a, b, s::modulo),
+        Binary::Step => same_file2(file, dst, a, b, s::step),
+    }
+}
+
+fn int_binary(file: &mut File<u32>, op: IntBinary, dst: Reg, a: Reg, b: Reg) {
+    let i = |x: u32| x as i32;
+    match op {
+        IntBinary::Add => same_file2(file, dst, a, b, u32::wrapping_add),
+        IntBinary::Sub => same_file2(file, dst, a, b, u32::wrapping_sub),
+        IntBinary::Mul => same_file2(file, dst, a, b, u32::wrapping_mul),
+        IntBinary::DivI => same_file2(file, dst, a, b, |x, y| s::div_i32(i(x), i(y)) as u32),
+        IntBinary::DivU => same_file2(file, dst, a, b, s::div_u32),
+        IntBinary::RemI => same_file2(file, dst, a, b, |x, y| s::rem_i32(i(x), i(y)) as u32),
+        IntBinary::RemU => same_file2(file, dst, a, b, s::rem_u32),
+        IntBinary::And => same_file2(file, dst, a, b, |x, y| x & y),
+        IntBinary::Or => same_file2(file, dst, a, b, |x, y| x | y),
+        IntBinary::Xor => same_file2(file, dst, a, b, |x, y| x ^ y),
+        IntBinary::Shl => same_file2(file, dst, a, b, s::shl_u32),
+        IntBinary::ShrI => same_file2(file, dst, a, b, |x, y| s::shr_i32(i(x), y) as u32),
+        IntBinary::ShrU => same_file2(file, dst, a, b, s::shr_u32),
+        IntBinary::MinI => same_file2(file, dst, a, b, |x, y| i(x).min(i(y)) as u32),
+        IntBinary::MinU => same_file2(file, dst, a, b, u32::min),
+        IntBinary::MaxI => same_file2(file, dst, a, b, |x, y| i(x).max(i(y)) as u32),
+        IntBinary::MaxU => same_file2(file, dst, a, b, u32::max),
+    }
+}
+
+#[inline(always)]
+fn same_file1<T: Copy>(file: &mut File<T>, dst: Reg, a: Reg, f: impl Fn(T) -> T) {
+    if dst.uniform {
+        file.uniform[dst.index as usize] = f(file.uniform[a.index as usize]);
+    } else {
+        let (d, view) = file.split(dst.index);
+        map1(d, view.read(a), f);
+    }
+}
+
+#[inline(always)]
+fn same_file2<T: Copy>(file: &mut File<T>, dst: Reg, a: Reg, b: Reg, f: impl Fn(T, T) -> T) {
+    if dst.uniform {
+        let u = &mut file.uniform;
+        u[dst.index as usize] = f(u[a.index as usize], u[b.index as usize]);
+    } else {
+        let (d, view) = file.split(dst.index);
+        map2(d, view.read(a), view.read(b), f);
+    }
+}
+
+#[inline(always)]
+fn same_file3<T: Copy>(file: &mut File<T>, dst: Reg, a: Reg, b: Reg, c: Reg, f: impl Fn(T, T, T) -> T) {
+    if dst.uniform {
+        let u = &mut file.uniform;
+        u[dst.index as usize] = f(u[a.index as usize], u[b.index as usize], u[c.index as usize]);
+    } else {
+        let (d, view) = file.split(dst.index);
+        map3(d, view.read(a), view.read(b), view.read(c), f);
+    }
+}
+
+#[inline(always)]
+fn cross1<A: Copy, D: Copy>(from: &File<A>, to: &mut File<D>, dst: Reg, a: Reg, f: impl Fn(A) -> D) {
+    if dst.uniform {
+        to.uniform[dst.index as usize] = f(from.uniform[a.index as usize]);
+    } else {
+        map1(&mut to.varying[dst.index as usize], from.read(a), f);
+    }
+}
+
+#[inline(always)]
+fn cross2<A: Copy, D: Copy>(
+    from: &File<A>,
+    to: &mut File<D>,
+    dst: Reg,
+    a: Reg,
+    b: Reg,
+    f: impl Fn(A, A) -> D,
+) {
+    if dst.uniform {
+        to.uniform[dst.index as usize] = f(from.uniform[a.index as usize], from.uniform[b.index as usize]);
+    } else {
+        map2(&mut to.varying[dst.index as usize], from.read(a), from.read(b), f);
+    }
+}
+
+fn select<T: Copy>(file: &mut File<T>, dst: Reg, cond: Lanes<'_, u32>, a: Reg, b: Reg) {
+    if dst.uniform {
+        let u = &mut file.uniform;
+        u[dst.index as usize] = if cond.at(0) != 0 { u[a.index as usize] } else { u[b.index as usize] };
+        return;
+    }
+    let (d, view) = file.split(dst.index);
+    let (a, b) = (view.read(a), view.read(b));
+    match cond {
+        Lanes::Uniform(c) => map1(d, if c != 0 { a } else { b }, |x| x),
+        Lanes::Varying(c) => map3(d, Lanes::Varying(c), a, b, |c, a, b| if c != 0 { a } else { b }),
+    }
+}
+
+/// A store into a variable: only the lanes of the mask change.
+fn store<T: Copy>(file: &mut File<T>, dst: Reg, src: Reg, mask: &Mask) {
+    if dst == src {
+        return;
+    }
+    if dst.uniform {
+        // The rate rules guarantee uniform variables are stored under uniform control only, and
+        // only from uniform values (the lowering checks the latter).
+        file.uniform[dst.index as usize] = file.uniform[src.index as usize];
+        return;
+    }
+    let (d, view) = file.split(dst.index);
+    let src = view.read(src);
+    if mask.all() {
+        map1(d, src, |x| x);
+    } else {
+        for (lane, d) in d.iter_mut().enumerate() {
+            if mask.has(lane) {
+                *d = src.at(lane);
+            }
+        }
+    }
+}
+
+/// Where element `i` of an array lives, with the index clamped into the array.
+#[derive(Copy, Clone)]
+struct Clamp {
+    len: u32,
+    stride: u32,
+    signed: bool,
+}
+
+impl Clamp {
+    #[inline(always)]
+    fn offset(self, raw: u32) -> u32 {
+        let last = self.len.saturating_sub(1);
+        let i = if self.signed { (raw as i32).clamp(0, last as i32) as u32 } else { raw.min(last) };
+        i * self.stride
+    }
+}
+
+fn gather<T: Copy>(file: &mut File<T>, dst: Reg, base: Reg, index: Lanes<'_, u32>, at: Clamp) {
+    if dst.uniform {
+        let from = base.index + at.offset(index.at(0));
+        file.uniform[dst.index as usize] = file.uniform[from as usize];
+        return;
+    }
+    let (d, view): (&mut [T; LANES], View<'_, T>) = file.split(dst.index);
+    match (base.uniform, index) {
+        (true, Lanes::Uniform(i)) => d.fill(view.uniform(base.index + at.offset(i))),
+        // A table lookup (a permutation, a colour table): the commonest gather in the stdlib.
+        (true, Lanes::Varying(index)) => {
+            for (d, i) in d.iter_mut().zip(index) {
+                *d = view.uniform(base.index + at.offset(*i));
+            }
+        }
+        (false, Lanes::Uniform(i)) => *d = *view.varying(base.index + at.offset(i)),
+        (false, Lanes::Varying(index)) => {
+            for (lane, d) in d.iter_mut().enumerate() {
+                *d = view.varying(base.index + at.offset(index[lane]))[lane];
+            }
+        }
+    }
+}
+
+fn scatter<T: Copy>(file: &mut File<T>, base: Reg, index: Lanes<'_, u32>, src: Reg, at: Clamp, mask: &Mask) {
+    if base.uniform {
+        let to = base.index + at.offset(index.at(0));
+        file.uniform[to as usize] = file.uniform[src.index as usize];
+        return;
+    }
+    let src = lanes_copy(file, src);
+    let src = src.as_lanes();
+    for lane in (0..LANES).filter(|l| mask.has(*l)) {
+        let to = base.index + at.offset(index.at(lane));
+        file.varying[to as usize][lane] = src.at(lane);
+    }
+}
+
+/// An operand copied out of its file (onto the stack), so that the file can be written while it is
+/// read.
+enum Copied<T> {
+    Varying([T; LANES]),
+    Uniform(T),
+}
+
+impl<T: Copy> Copied<T> {
+    fn as_lanes(&self) -> Lanes<'_, T> {
+        match self {
+            Copied::Varying(v) => Lanes::Varying(v),
+            Copied::Uniform(x) => Lanes::Uniform(*x),
+        }
+    }
+}
+
+fn lanes_copy<T: Copy>(file: &File<T>, r: Reg) -> Copied<T> {
+    match file.read(r) {
+        Lanes::Varying(v) => Copied::Varying(*v),
+        Lanes::Uniform(x) => Copied::Uniform(x),
+    }
+}
+
+/// `random()`: a float in [0, 1) from a hash of the point's index and the call site (PCG's output
+/// permutation applied twice), so a program gives the same values on every run and every backend.
+pub(crate) fn random(point: u32, site: u32) -> f64 {
+    fn pcg(x: u32) -> u32 {
+        let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+        let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+        (word >> 22) ^ word
+    }
+    let h = pcg(pcg(point) ^ site.wrapping_mul(0x9e37_79b9));
+    f64::from(h >> 8) / f64::from(1u32 << 24)
+}

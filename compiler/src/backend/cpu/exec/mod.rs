@@ -1,0 +1,185 @@
+//! The batch machine: runs [`Code`](super::code::Code) over up to [`LANES`] shading points at once,
+//! with an execution mask for divergent control flow, the way the grid interpreters of PRMan, BMRT
+//! and Aqsis run a micropolygon grid.
+//!
+//! Lanes that leave a construct early (`break`, `continue`, `return`) are *halted*: every later
+//! statement runs without them until the construct they left is finished, when they rejoin.
+
+mod instructions;
+mod kernels;
+mod mask;
+
+use crate::backend::cpu::code::{Files, Node};
+use crate::backend::cpu::scalar::Real;
+use crate::source::Span;
+pub(crate) use kernels::File;
+pub(crate) use mask::Mask;
+
+/// The number of shading points a batch holds. Large enough that an instruction's dispatch is
+/// amortized over many lanes, small enough that a program's registers stay in the L2 cache.
+pub const LANES: usize = 128;
+
+/// Why a run stopped before the end of the program.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// A loop ran more iterations than the budget allows (in some lane of the batch).
+    IterationBudget {
+        /// The loop.
+        span: Span,
+        /// The budget.
+        budget: u64,
+    },
+}
+
+/// What `break`, `continue` and `return` leave, and the lanes waiting to rejoin after it.
+#[derive(Clone, Debug)]
+enum Target {
+    Loop { broke: Mask, continued: Mask },
+    Function { returned: Mask },
+}
+
+/// The registers and the state of control flow for one batch.
+pub(crate) struct Machine<F> {
+    pub floats: File<F>,
+    pub ints: File<u32>,
+    /// Lanes that have left a construct that is still running.
+    halted: Mask,
+    targets: Vec<Target>,
+    /// The index of the point in lane 0 (what `random()` hashes).
+    pub first_point: u32,
+    /// The most iterations one loop may run before the run stops.
+    pub budget: u64,
+}
+
+impl<F: Real> Machine<F> {
+    /// A machine with registers for code of these sizes, all zero.
+    pub fn new(files: Files, budget: u64) -> Self {
+        Machine {
+            floats: File::new(files.uniform_floats, files.varying_floats, F::ZERO),
+            ints: File::new(files.uniform_ints, files.varying_ints, 0),
+            halted: Mask::none(),
+            // Deep enough for any program the front end accepts without reallocating.
+            targets: Vec::with_capacity(64),
+            first_point: 0,
+            budget,
+        }
+    }
+
+    /// Runs `code` over the first `active` lanes.
+    pub fn run(&mut self, code: &[Node], active: usize) -> Result<(), Stop> {
+        self.halted = Mask::none();
+        self.targets.clear();
+        self.block(code, &Mask::first(active))
+    }
+
+    fn block(&mut self, nodes: &[Node], entry: &Mask) -> Result<(), Stop> {
+        let mut mask = entry.clone();
+        for node in nodes {
+            if self.halted.any() {
+                mask.remove(&self.halted);
+                if !mask.any() {
+                    return Ok(());
+                }
+            }
+            match node {
+                Node::Inst(inst) => self.inst(inst, &mask),
+                Node::If { cond, then, otherwise } => {
+                    let (yes, no) = mask.split(self.ints.read(*cond));
+                    if yes.any() {
+                        self.block(then, &yes)?;
+                    }
+                    if no.any() {
+                        self.block(otherwise, &no)?;
+                    }
+                }
+                Node::Loop { test, cond, body, step, span } => {
+                    self.repeat(test, *cond, body, step, *span, &mask)?;
+                }
+                Node::Break(levels) => {
+                    if let Target::Loop { broke, .. } = self.loop_target(*levels) {
+                        broke.add(&mask);
+                    }
+                    self.halted.add(&mask);
+                    return Ok(());
+                }
+                Node::Continue(levels) => {
+                    if let Target::Loop { continued, .. } = self.loop_target(*levels) {
+                        continued.add(&mask);
+                    }
+                    self.halted.add(&mask);
+                    return Ok(());
+                }
+                Node::Return => {
+                    // A return from the shader itself halts its lanes for good.
+                    if let Some(Target::Function { returned }) =
+                        self.targets.iter_mut().rev().find(|t| matches!(t, Target::Function { .. }))
+                    {
+                        returned.add(&mask);
+                    }
+                    self.halted.add(&mask);
+                    return Ok(());
+                }
+                Node::Function(body) => {
+                    self.targets.push(Target::Function { returned: Mask::none() });
+                    self.block(body, &mask)?;
+                    if let Some(Target::Function { returned }) = self.targets.pop() {
+                        self.halted.remove(&returned);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The loop `levels` out (1 is the innermost).
+    fn loop_target(&mut self, levels: u32) -> &mut Target {
+        self.targets
+            .iter_mut()
+            .rev()
+            .filter(|t| matches!(t, Target::Loop { .. }))
+            .nth(levels.saturating_sub(1) as usize)
+            .expect("the semantic stage checks that break and continue are inside enough loops")
+    }
+
+    fn repeat(
+        &mut self,
+        test: &[Node],
+        cond: Option<crate::backend::cpu::code::Reg>,
+        body: &[Node],
+        step: &[Node],
+        span: Span,
+        entry: &Mask,
+    ) -> Result<(), Stop> {
+        self.targets.push(Target::Loop { broke: Mask::none(), continued: Mask::none() });
+        let mut mask = entry.clone();
+        let mut iterations = 0u64;
+        loop {
+            if let Some(cond) = cond {
+                self.block(test, &mask)?;
+                mask = mask.split(self.ints.read(cond)).0;
+            }
+            if !mask.any() {
+                break;
+            }
+            iterations += 1;
+            if iterations > self.budget {
+                return Err(Stop::IterationBudget { span, budget: self.budget });
+            }
+            self.block(body, &mask)?;
+            if let Some(Target::Loop { continued, .. }) = self.targets.last_mut() {
+                self.halted.remove(continued);
+                *continued = Mask::none();
+            }
+            mask.remove(&self.halted);
+            if !mask.any() {
+                break;
+            }
+            self.block(step, &mask)?;
+            mask.remove(&self.halted);
+        }
+        if let Some(Target::Loop { broke, .. }) = self.targets.pop() {
+            self.halted.remove(&broke);
+        }
+        Ok(())
+    }
+}

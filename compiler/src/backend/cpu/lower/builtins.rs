@@ -1,0 +1,456 @@
+//! Built-in functions: math, shaping and vector functions composed from the emitter's scalar
+//! operations, the sums over the bound lights, and the geometric family (in `geometry`).
+
+use super::{Lower, Val};
+use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, Reg, Ternary, Unary};
+use crate::diag::{Code as DiagCode, Diagnostic};
+use crate::ir::types::Base;
+use crate::ir::{ExprId, ExprKind};
+use crate::sema::builtins::Builtin;
+
+impl Lower<'_> {
+    /// A call of a built-in.
+    pub(super) fn builtin(
+        &mut self,
+        b: &'static Builtin,
+        args: &[ExprId],
+        id: ExprId,
+    ) -> Result<Val, Diagnostic> {
+        let span = self.shader.expr(id).span;
+        let ret = self.shader.expr(id).ty;
+        if b.name == "integrate" {
+            return self.integrate(args[0]);
+        }
+        let vals: Vec<Val> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
+        let f = |i: usize| vals[i].floats();
+        let is_int = matches!(ret.base, Base::Int | Base::Uint);
+        let signed = ret.base == Base::Int;
+        Ok(match b.name {
+            "radians" => self.scale(f(0), std::f64::consts::PI / 180.0),
+            "degrees" => self.scale(f(0), 180.0 / std::f64::consts::PI),
+            "sin" => self.each(Unary::Sin, f(0)),
+            "cos" => self.each(Unary::Cos, f(0)),
+            "tan" => self.each(Unary::Tan, f(0)),
+            "asin" => self.each(Unary::Asin, f(0)),
+            "acos" => self.each(Unary::Acos, f(0)),
+            "atan" if args.len() == 1 => self.each(Unary::Atan, f(0)),
+            "atan" => Val::Float(self.zip(Binary::Atan2, f(0), f(1))),
+            "pow" => Val::Float(self.zip(Binary::Pow, f(0), f(1))),
+            "exp" => self.each(Unary::Exp, f(0)),
+            "sqrt" => self.each(Unary::Sqrt, f(0)),
+            "inversesqrt" => self.each(Unary::InverseSqrt, f(0)),
+            "log" if args.len() == 1 => self.each(Unary::Log, f(0)),
+            "log" => {
+                let (x, base) = (self.emit.unary(Unary::Log, f(0)[0]), self.emit.unary(Unary::Log, f(1)[0]));
+                Val::Float(vec![self.emit.binary(Binary::Div, x, base)])
+            }
+            "mod" => Val::Float(self.zip(Binary::Mod, f(0), f(1))),
+            "abs" if is_int && signed => {
+                Val::Int(vals[0].ints().iter().map(|x| self.emit.int_unary(IntUnary::Abs, *x)).collect())
+            }
+            "abs" if is_int => vals[0].clone(),
+            "abs" => self.each(Unary::Abs, f(0)),
+            "sign" => self.each(Unary::Sign, f(0)),
+            "floor" => self.each(Unary::Floor, f(0)),
+            "ceil" => self.each(Unary::Ceil, f(0)),
+            "round" => self.each(Unary::Round, f(0)),
+            "min" | "max" if is_int => {
+                let op = match (b.name, signed) {
+                    ("min", true) => IntBinary::MinI,
+                    ("min", false) => IntBinary::MinU,
+                    (_, true) => IntBinary::MaxI,
+                    _ => IntBinary::MaxU,
+                };
+                let mut acc = vals[0].ints().to_vec();
+                for v in &vals[1..] {
+                    acc = acc.iter().zip(v.ints()).map(|(a, b)| self.emit.int_binary(op, *a, *b)).collect();
+                }
+                Val::Int(acc)
+            }
+            "min" | "max" => {
+                let op = if b.name == "min" { Binary::Min } else { Binary::Max };
+                let mut acc = f(0).to_vec();
+                for v in &vals[1..] {
+                    acc = self.zip(op, &acc, v.floats());
+                }
+                Val::Float(acc)
+            }
+            "clamp" if is_int => {
+                let (lo_op, hi_op) = if signed {
+                    (IntBinary::MaxI, IntBinary::MinI)
+                } else {
+                    (IntBinary::MaxU, IntBinary::MinU)
+                };
+                let (x, lo, hi) = (vals[0].ints(), vals[1].ints(), vals[2].ints());
+                let r = self.emit.int_binary(lo_op, x[0], lo[0]);
+                Val::Int(vec![self.emit.int_binary(hi_op, r, hi[0])])
+            }
+            "clamp" => self.each3(Ternary::Clamp, f(0), f(1), f(2)),
+            "clamp01" => {
+                let (zero, one) = (self.emit.float(0.0), self.emit.float(1.0));
+                self.each3(Ternary::Clamp, f(0), &[zero], &[one])
+            }
+            "mix" => self.each3(Ternary::Mix, f(0), f(1), f(2)),
+            "step" => Val::Float(self.zip(Binary::Step, f(0), f(1))),
+            "smoothstep" => self.each3(Ternary::Smoothstep, f(0), f(1), f(2)),
+            "filterstep" if args.len() == 3 => self.filterstep_explicit(f(0)[0], f(1)[0], f(2)[0]),
+            "select" => {
+                let c = self.truth(&vals[0]);
+                self.select(c, &vals[1], &vals[2])
+            }
+            "random" => {
+                let n = ret.base.components();
+                let regs = (0..n)
+                    .map(|_| {
+                        self.random_sites += 1;
+                        self.emit.random(self.random_sites)
+                    })
+                    .collect();
+                Val::Float(regs)
+            }
+            "xcomp" | "ycomp" | "zcomp" => {
+                let i = ["xcomp", "ycomp", "zcomp"].iter().position(|n| *n == b.name).unwrap_or(0);
+                Val::Float(vec![f(0)[i]])
+            }
+            "setxcomp" | "setycomp" | "setzcomp" => {
+                let i = ["setxcomp", "setycomp", "setzcomp"].iter().position(|n| *n == b.name).unwrap_or(0);
+                let mut v = f(0).to_vec();
+                v[i] = f(1)[0];
+                self.write_output(args[0], &Val::Float(v), span)?;
+                Val::Void
+            }
+            "comp" | "setcomp" => self.component(b.name, args, &vals, span)?,
+            "length" => Val::Float(vec![self.length(f(0))]),
+            "distance" => {
+                let d = self.zip(Binary::Sub, f(0), f(1));
+                Val::Float(vec![self.length(&d)])
+            }
+            "normalize" => Val::Float(self.normalize(f(0))),
+            "dot" => Val::Float(vec![self.dot(f(0), f(1))]),
+            "cross" => Val::Float(self.cross(f(0), f(1))),
+            "rgb" => Val::Float(f(0)[..3].to_vec()),
+            "faceforward" => {
+                let nref = match vals.get(2) {
+                    Some(v) => v.floats().to_vec(),
+                    None => {
+                        let ng = self.global_named("Ng");
+                        if ng.floats().is_empty() { f(0).to_vec() } else { ng.floats().to_vec() }
+                    }
+                };
+                // WGSL faceForward: n where dot(i, nref) < 0, else -n.
+                let d = self.dot(f(1), &nref);
+                let zero = self.emit.float(0.0);
+                let facing = self.emit.compare(Compare::Lt, d, zero);
+                let neg = self.each(Unary::Neg, f(0));
+                self.select(facing, &vals[0], &neg)
+            }
+            "reflect" => Val::Float(self.reflect(f(0), f(1))),
+            "refract" => Val::Float(self.refract(f(0), f(1), f(2)[0])),
+            "ambient" => self.light_sum(LightTerm::Ambient, &vals),
+            "diffuse" => self.light_sum(LightTerm::Diffuse, &vals),
+            "specular" => self.light_sum(LightTerm::Specular, &vals),
+            "phong" => self.light_sum(LightTerm::Phong, &vals),
+            "specularbrdf" => {
+                let l = self.normalize(f(0));
+                let brdf = self.specular_brdf(&l, f(1), f(2), f(3)[0]);
+                Val::Float(vec![brdf; 3])
+            }
+            "concat" => Val::Str(
+                vals.iter()
+                    .map(|v| match v {
+                        Val::Str(s) => s.as_str(),
+                        _ => "",
+                    })
+                    .collect::<String>()
+                    .into(),
+            ),
+            "xyz_screen" => self.named_input("xyz_screen", 4),
+            "Du" | "Dv" | "Deriv" | "filterwidth" | "filterstep" | "area" | "calculatenormal" => {
+                return Err(Diagnostic::error(
+                    DiagCode::Internal,
+                    format!("`{}` reached the interpreter without being differentiated", b.name),
+                    span,
+                    "this derivative",
+                )
+                .with_note("opt::derivs::differentiate must run before the interpreter's lowering"));
+            }
+            "noise" | "snoise" | "pnoise" | "cellnoise" => {
+                return Err(Diagnostic::error(
+                    DiagCode::NotExecutable,
+                    format!("the interpreter cannot run `{}` yet", b.name),
+                    span,
+                    "noise built-in",
+                )
+                .with_note("noise is written in the language by the standard library (issue 7); until then it has no implementation on either backend"));
+            }
+            "texture" | "texture3d" | "environment" | "shadow" => {
+                return Err(Diagnostic::error(
+                    DiagCode::NotExecutable,
+                    format!("`{}` needs a bound texture, and evaluation at points has none", b.name),
+                    span,
+                    "texture lookup",
+                )
+                .with_note("textures are bound by the runtime when a scene is rendered"));
+            }
+            _ => match self.geometry(b, &vals, args, id)? {
+                Some(v) => v,
+                None => {
+                    return Err(Diagnostic::error(
+                        DiagCode::NotExecutable,
+                        format!("the interpreter has no implementation of `{}`", b.signature),
+                        span,
+                        "this call",
+                    ));
+                }
+            },
+        })
+    }
+
+    /// `integrate(x)`: the sum of a per-light value over the bound lights.
+    fn integrate(&mut self, arg: ExprId) -> Result<Val, Diagnostic> {
+        if self.light.is_some() {
+            return self.expr(arg);
+        }
+        let n = self.shader.expr(arg).ty.base.components() as usize;
+        let mut sum = vec![self.emit.float(0.0); n];
+        for k in 0..self.binding.lights.len() {
+            self.light = Some(k);
+            let v = self.expr(arg);
+            self.light = None;
+            sum = self.zip(Binary::Add, &sum, v?.floats());
+        }
+        Ok(Val::Float(sum))
+    }
+
+    /// A caller-supplied varying input that is not a predefined variable (`xyz_screen`).
+    fn named_input(&mut self, name: &str, n: u32) -> Val {
+        if let Some(s) = self.slots.iter().position(|s| s.name == name) {
+            return Val::Float(self.slots[s].regs.clone());
+        }
+        let regs = self.emit.fixed_block(true, false, n);
+        self.slots.push(super::Slot {
+            name: name.to_string(),
+            kind: super::SlotKind::Global,
+            ty: crate::ir::types::Type::of(Base::Float4),
+            float: true,
+            regs: regs.clone(),
+        });
+        Val::Float(regs)
+    }
+
+    /// Stores into the local passed as an `output` argument.
+    pub(super) fn write_output(
+        &mut self,
+        arg: ExprId,
+        v: &Val,
+        span: crate::source::Span,
+    ) -> Result<(), Diagnostic> {
+        let place = match self.kind(arg) {
+            ExprKind::Local(l) => crate::ir::Place::Local(*l),
+            ExprKind::Global(g) => crate::ir::Place::Global(g),
+            _ => return Ok(()),
+        };
+        let access = self.access(&place)?;
+        self.store(&access, v, span)
+    }
+
+    /// `comp(c, i)`, `comp(m, row, col)`, `setcomp(c, i, x)`, `setcomp(m, row, col, x)`.
+    fn component(
+        &mut self,
+        name: &str,
+        args: &[ExprId],
+        vals: &[Val],
+        span: crate::source::Span,
+    ) -> Result<Val, Diagnostic> {
+        let matrix = self.shader.expr(args[0]).ty.base == Base::Matrix4;
+        let index_count = if matrix { 2 } else { 1 };
+        let to_int = |this: &mut Self, v: &Val| {
+            this.emit.convert(crate::backend::cpu::code::Convert::FloatToInt, v.floats()[0])
+        };
+        let mut index = to_int(self, &vals[1]);
+        let width = if matrix { 16 } else { 3 };
+        if matrix {
+            let four = self.emit.int(4);
+            let zero = self.emit.int(0);
+            let three = self.emit.int(3);
+            let row = self.emit.int_binary(IntBinary::MaxI, index, zero);
+            let row = self.emit.int_binary(IntBinary::MinI, row, three);
+            let col = to_int(self, &vals[2]);
+            let col = self.emit.int_binary(IntBinary::MaxI, col, zero);
+            let col = self.emit.int_binary(IntBinary::MinI, col, three);
+            let row = self.emit.int_binary(IntBinary::Mul, row, four);
+            index = self.emit.int_binary(IntBinary::Add, row, col);
+        }
+        let regs = vals[0].floats().to_vec();
+        if name == "comp" {
+            let access = self.contiguous_regs(regs);
+            let d = super::stmt::Dynamic { index, signed: true, len: width, stride: 1 };
+            let a = super::stmt::Access { root: access, float: true, offset: 0, width: 1, dynamic: Some(d) };
+            return Ok(self.read(&a));
+        }
+        // setcomp: the new value in the selected component, the old elsewhere.
+        let x = vals[1 + index_count].floats()[0];
+        let out: Vec<Reg> = (0..width)
+            .map(|c| {
+                let k = self.emit.int(c);
+                let here = self.emit.int_compare(Compare::Eq, true, index, k);
+                self.emit.select(true, here, x, regs[c as usize])
+            })
+            .collect();
+        self.write_output(args[0], &Val::Float(out), span)?;
+        Ok(Val::Void)
+    }
+
+    fn contiguous_regs(&mut self, regs: Vec<Reg>) -> Vec<Reg> {
+        let consecutive =
+            regs.windows(2).all(|w| w[1].index == w[0].index + 1 && w[1].uniform == w[0].uniform);
+        if consecutive {
+            return regs;
+        }
+        let uniform = regs.iter().all(|r| r.uniform);
+        regs.iter().map(|r| self.emit.copy(true, *r, uniform)).collect()
+    }
+
+    /// `op` applied to each component.
+    pub(crate) fn each(&mut self, op: Unary, a: &[Reg]) -> Val {
+        Val::Float(a.iter().map(|x| self.emit.unary(op, *x)).collect())
+    }
+
+    /// `op` applied componentwise to three operands (scalars apply to every component).
+    pub(crate) fn each3(&mut self, op: Ternary, a: &[Reg], b: &[Reg], c: &[Reg]) -> Val {
+        let n = a.len().max(b.len()).max(c.len());
+        let pick = |r: &[Reg], i: usize| if r.len() == 1 { r[0] } else { r[i] };
+        Val::Float((0..n).map(|i| self.emit.ternary(op, pick(a, i), pick(b, i), pick(c, i))).collect())
+    }
+
+    fn scale(&mut self, a: &[Reg], k: f64) -> Val {
+        let k = self.emit.float(k);
+        Val::Float(self.zip(Binary::Mul, a, &[k]))
+    }
+
+    /// `sqrt(v . v)`.
+    pub(crate) fn length(&mut self, v: &[Reg]) -> Reg {
+        let d = self.dot(v, v);
+        self.emit.unary(Unary::Sqrt, d)
+    }
+
+    /// `v / length(v)` (a zero vector gives NaN, as in WGSL; the stdlib guards where it matters).
+    pub(crate) fn normalize(&mut self, v: &[Reg]) -> Vec<Reg> {
+        let len = self.length(v);
+        v.iter().map(|x| self.emit.binary(Binary::Div, *x, len)).collect()
+    }
+
+    /// WGSL `reflect(i, n)`: `i - 2 * dot(n, i) * n`.
+    pub(crate) fn reflect(&mut self, i: &[Reg], n: &[Reg]) -> Vec<Reg> {
+        let d = self.dot(n, i);
+        let two = self.emit.float(2.0);
+        let k = self.emit.binary(Binary::Mul, two, d);
+        let kn = self.zip(Binary::Mul, n, &[k]);
+        self.zip(Binary::Sub, i, &kn)
+    }
+
+    /// WGSL `refract(i, n, eta)`: 0 on total internal reflection.
+    pub(crate) fn refract(&mut self, i: &[Reg], n: &[Reg], eta: Reg) -> Vec<Reg> {
+        let d = self.dot(n, i);
+        let one = self.emit.float(1.0);
+        let zero = self.emit.float(0.0);
+        let d2 = self.emit.binary(Binary::Mul, d, d);
+        let sin2 = self.emit.binary(Binary::Sub, one, d2);
+        let eta2 = self.emit.binary(Binary::Mul, eta, eta);
+        let e = self.emit.binary(Binary::Mul, eta2, sin2);
+        let k = self.emit.binary(Binary::Sub, one, e);
+        let total = self.emit.compare(Compare::Lt, k, zero);
+        let root = self.emit.unary(Unary::Sqrt, k);
+        let ed = self.emit.binary(Binary::Mul, eta, d);
+        let m = self.emit.binary(Binary::Add, ed, root);
+        let ei = self.zip(Binary::Mul, i, &[eta]);
+        let mn = self.zip(Binary::Mul, n, &[m]);
+        let r = self.zip(Binary::Sub, &ei, &mn);
+        r.iter().map(|x| self.emit.select(true, total, zero, *x)).collect()
+    }
+
+    /// The 3-argument `filterstep(edge, x0, x1)`: the fraction of [x0, x1] at or above `edge`
+    /// (a plain step at x0 when the interval is empty).
+    fn filterstep_explicit(&mut self, edge: Reg, x0: Reg, x1: Reg) -> Val {
+        let w = self.emit.binary(Binary::Sub, x1, x0);
+        let above = self.emit.binary(Binary::Sub, x1, edge);
+        let t = self.emit.binary(Binary::Div, above, w);
+        let (zero, one) = (self.emit.float(0.0), self.emit.float(1.0));
+        let t = self.emit.ternary(Ternary::Clamp, t, zero, one);
+        let step = self.emit.binary(Binary::Step, edge, x0);
+        let wide = self.emit.compare(Compare::Gt, w, zero);
+        Val::Float(vec![self.emit.select(true, wide, t, step)])
+    }
+
+    /// RenderMan's `specularbrdf(L, N, V, roughness)`: `pow(max(0, N . normalize(L + V)), 1 / roughness)`.
+    fn specular_brdf(&mut self, l: &[Reg], n: &[Reg], v: &[Reg], roughness: Reg) -> Reg {
+        let h = self.zip(Binary::Add, l, v);
+        let h = self.normalize(&h);
+        let d = self.dot(n, &h);
+        let zero = self.emit.float(0.0);
+        let one = self.emit.float(1.0);
+        let d = self.emit.binary(Binary::Max, zero, d);
+        let e = self.emit.binary(Binary::Div, one, roughness);
+        self.emit.binary(Binary::Pow, d, e)
+    }
+
+    /// The RenderMan light sums, as the RI specification defines them with `illuminance`.
+    fn light_sum(&mut self, term: LightTerm, vals: &[Val]) -> Val {
+        let mut sum = vec![self.emit.float(0.0); 3];
+        let zero = self.emit.float(0.0);
+        for k in 0..self.binding.lights.len() {
+            let ambient = self.binding.lights[k].ambient;
+            if ambient != (term == LightTerm::Ambient) {
+                continue;
+            }
+            self.light = Some(k);
+            let cl = self.global_named("Cl").floats().to_vec();
+            let l = self.global_named("L").floats().to_vec();
+            self.light = None;
+            let weight = match term {
+                LightTerm::Ambient => None,
+                LightTerm::Diffuse => {
+                    let nl = self.normalize(&l);
+                    let d = self.dot(&nl, vals[0].floats());
+                    Some(self.emit.binary(Binary::Max, zero, d))
+                }
+                LightTerm::Specular => {
+                    let nl = self.normalize(&l);
+                    let n = vals[0].floats();
+                    let facing = self.dot(&nl, n);
+                    let brdf = self.specular_brdf(&nl, n, vals[1].floats(), vals[2].floats()[0]);
+                    let lit = self.emit.compare(Compare::Ge, facing, zero);
+                    Some(self.emit.select(true, lit, brdf, zero))
+                }
+                LightTerm::Phong => {
+                    let n = self.normalize(vals[0].floats());
+                    let v = self.normalize(vals[1].floats());
+                    let minus_v = self.each(Unary::Neg, &v);
+                    let r = self.reflect(minus_v.floats(), &n);
+                    let nl = self.normalize(&l);
+                    let facing = self.dot(&nl, vals[0].floats());
+                    let d = self.dot(&r, &nl);
+                    let d = self.emit.binary(Binary::Max, zero, d);
+                    let p = self.emit.binary(Binary::Pow, d, vals[2].floats()[0]);
+                    let lit = self.emit.compare(Compare::Ge, facing, zero);
+                    Some(self.emit.select(true, lit, p, zero))
+                }
+            };
+            let contribution = match weight {
+                Some(w) => self.zip(Binary::Mul, &cl, &[w]),
+                None => cl,
+            };
+            sum = self.zip(Binary::Add, &sum, &contribution);
+        }
+        Val::Float(sum)
+    }
+}
+
+/// Which RenderMan light sum.
+#[derive(Copy, Clone, PartialEq, Eq)]
+enum LightTerm {
+    Ambient,
+    Diffuse,
+    Specular,
+    Phong,
+}

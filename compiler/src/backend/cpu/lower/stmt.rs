@@ -1,0 +1,385 @@
+//! Statements: stores (through run-time indices too), structured control flow, and the light
+//! constructs, unrolled over the binding's lights.
+
+use super::{Lower, Val};
+use crate::backend::cpu::code::{Binary, Compare, IntBinary, Node, Reg, Unary};
+use crate::diag::{Code as DiagCode, Diagnostic};
+use crate::ir::types::{Base, Type};
+use crate::ir::{ExprId, ExprKind, Literal, Place, Stmt};
+use crate::source::Span;
+
+/// A part of a variable's registers: `width` components from `offset`, or, with `dynamic`, the
+/// element a run-time index selects.
+pub(crate) struct Access {
+    /// Every register of the root variable (contiguous).
+    pub root: Vec<Reg>,
+    /// Whether they are floats.
+    pub float: bool,
+    /// The first component addressed (of element 0, with `dynamic`).
+    pub offset: u32,
+    /// The number of components addressed.
+    pub width: u32,
+    /// A run-time element index.
+    pub dynamic: Option<Dynamic>,
+}
+
+/// A run-time index into an array of registers.
+#[derive(Copy, Clone)]
+pub(crate) struct Dynamic {
+    /// The index register (integer file).
+    pub index: Reg,
+    /// Whether it is an `int` (negative values clamp to 0) or a `uint`.
+    pub signed: bool,
+    /// The number of elements.
+    pub len: u32,
+    /// The components between consecutive elements.
+    pub stride: u32,
+}
+
+impl Lower<'_> {
+    pub(super) fn statement(&mut self, stmt: &Stmt) -> Result<(), Diagnostic> {
+        if self.light.is_none() && self.statement_is_perlight(stmt) {
+            // Stanford per-light computation: once per bound light.
+            for k in 0..self.binding.lights.len() {
+                self.light = Some(k);
+                let result = self.statement(stmt);
+                self.light = None;
+                result?;
+            }
+            return Ok(());
+        }
+        self.next_statement();
+        match stmt {
+            Stmt::Store { place, value, span } => {
+                let v = self.expr(*value)?;
+                let access = self.access(place)?;
+                self.store(&access, &v, *span)?;
+            }
+            Stmt::Eval(id) => {
+                self.expr(*id)?;
+            }
+            Stmt::If { cond, then, otherwise } => {
+                let cond = self.condition(*cond)?;
+                let then = self.block(then)?;
+                let otherwise = self.block(otherwise)?;
+                self.emit.out.push(Node::If { cond, then, otherwise });
+            }
+            Stmt::Loop { cond, body, step, span } => {
+                let (test, cond) = match cond {
+                    Some(c) => {
+                        let outer = std::mem::take(&mut self.emit.out);
+                        let reg = self.condition(*c);
+                        let test = std::mem::replace(&mut self.emit.out, outer);
+                        (test, Some(reg?))
+                    }
+                    None => (Vec::new(), None),
+                };
+                let body = self.block(body)?;
+                let step = self.block(step)?;
+                self.emit.out.push(Node::Loop { test, cond, body, step, span: *span });
+            }
+            Stmt::Break(n) => self.emit.out.push(Node::Break(*n)),
+            Stmt::Continue(n) => self.emit.out.push(Node::Continue(*n)),
+            Stmt::Return => self.emit.out.push(Node::Return),
+            Stmt::Inline { body, .. } => {
+                let mut body = self.block(body)?;
+                // Falling off the end is the same as a final `return`, which would only cost mask
+                // bookkeeping.
+                if body.last() == Some(&Node::Return) {
+                    body.pop();
+                }
+                self.emit.out.push(Node::Function(body));
+            }
+            Stmt::Illuminance { args, body } => self.illuminance(args, body)?,
+            Stmt::Emit { solar, args, body } => self.emission(*solar, args, body)?,
+        }
+        Ok(())
+    }
+
+    /// Whether a statement computes a per-light value outside a light loop (Stanford style).
+    fn statement_is_perlight(&self, stmt: &Stmt) -> bool {
+        let place_perlight = |p: &Place| {
+            let mut p = p;
+            loop {
+                match p {
+                    Place::Local(l) => return self.shader.local(*l).rate.perlight,
+                    Place::Global(g) => return g.perlight,
+                    Place::Index(inner, _) => p = inner,
+                }
+            }
+        };
+        match stmt {
+            Stmt::Store { place, value, .. } => place_perlight(place) || self.perlight(*value),
+            Stmt::Eval(id) => self.perlight(*id),
+            Stmt::If { cond, .. } => self.perlight(*cond),
+            Stmt::Loop { cond, .. } => cond.is_some_and(|c| self.perlight(c)),
+            _ => false,
+        }
+    }
+
+    /// A condition as a bool register.
+    pub(super) fn condition(&mut self, id: ExprId) -> Result<Reg, Diagnostic> {
+        let v = self.expr(id)?;
+        Ok(self.truth(&v))
+    }
+
+    /// Non-zero is true.
+    pub(super) fn truth(&mut self, v: &Val) -> Reg {
+        match v {
+            Val::Float(r) => self.emit.convert(crate::backend::cpu::code::Convert::FloatToBool, r[0]),
+            Val::Int(r) => r[0],
+            Val::Str(_) | Val::Void => self.emit.int(0),
+        }
+    }
+
+    /// Where a place's registers are.
+    pub(super) fn access(&mut self, place: &Place) -> Result<Access, Diagnostic> {
+        match place {
+            Place::Local(id) => Ok(whole(self.local(*id))),
+            Place::Global(g) => Ok(whole(self.global(g))),
+            Place::Index(inner, index) => {
+                let ty = self.place_type(inner);
+                let a = self.access(inner)?;
+                self.index_access(a, ty, *index)
+            }
+        }
+    }
+
+    fn place_type(&self, place: &Place) -> Type {
+        match place {
+            Place::Local(id) => self.shader.local(*id).ty,
+            Place::Global(g) => Type::of(g.ty),
+            Place::Index(inner, _) => element_type(self.place_type(inner)),
+        }
+    }
+
+    /// Narrows an access of a value of type `ty` to its element `index`.
+    pub(super) fn index_access(
+        &mut self,
+        mut a: Access,
+        ty: Type,
+        index: ExprId,
+    ) -> Result<Access, Diagnostic> {
+        let elem = element_type(ty);
+        let width = super::layout(elem).map_or(1, |(_, n)| n);
+        let len = (a.width / width.max(1)).max(1);
+        if let Some(k) = self.constant_index(index) {
+            let k = k.clamp(0, i64::from(len) - 1) as u32;
+            a.offset += k * width;
+            a.width = width;
+            return Ok(a);
+        }
+        let signed = self.shader.expr(index).ty.base != Base::Uint;
+        let i = self.expr(index)?.ints()[0];
+        a.dynamic = Some(match a.dynamic {
+            None => Dynamic { index: i, signed, len, stride: width },
+            Some(outer) => {
+                // Two run-time indices: one flat component index from the first component
+                // addressed, each part clamped on its own (so the flat index is in range).
+                let outer_i = self.clamped(outer);
+                let inner_i = self.clamped(Dynamic { index: i, signed, len, stride: width });
+                let flat = self.emit.int_binary(IntBinary::Add, outer_i, inner_i);
+                Dynamic { index: flat, signed: false, len: outer.len * outer.stride, stride: 1 }
+            }
+        });
+        a.width = width;
+        Ok(a)
+    }
+
+    /// `clamp(index, 0, len - 1) * stride` as a `uint`.
+    fn clamped(&mut self, d: Dynamic) -> Reg {
+        let last = self.emit.int(d.len.saturating_sub(1));
+        let i = if d.signed {
+            let zero = self.emit.int(0);
+            let i = self.emit.int_binary(IntBinary::MaxI, d.index, zero);
+            self.emit.int_binary(IntBinary::MinI, i, last)
+        } else {
+            self.emit.int_binary(IntBinary::MinU, d.index, last)
+        };
+        let stride = self.emit.int(d.stride);
+        self.emit.int_binary(IntBinary::Mul, i, stride)
+    }
+
+    /// The value of an index known at compile time.
+    pub(super) fn constant_index(&self, id: ExprId) -> Option<i64> {
+        match self.kind(id) {
+            ExprKind::Literal(Literal::Int(i)) => Some(i64::from(*i)),
+            ExprKind::Literal(Literal::Uint(i)) => Some(i64::from(*i)),
+            ExprKind::Convert(inner) => match self.kind(*inner) {
+                ExprKind::Literal(Literal::Float(x)) if x.is_finite() => Some(x.trunc() as i64),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// Reads the addressed components.
+    pub(super) fn read(&mut self, a: &Access) -> Val {
+        let regs: Vec<Reg> = (0..a.width)
+            .map(|c| {
+                let base = a.root[(a.offset + c) as usize];
+                match a.dynamic {
+                    None => base,
+                    Some(d) => self.emit.gather(a.float, base, d.len, d.stride, d.index, d.signed),
+                }
+            })
+            .collect();
+        if a.float { Val::Float(regs) } else { Val::Int(regs) }
+    }
+
+    /// Stores `v` into the addressed components, in the lanes of the execution mask.
+    pub(super) fn store(&mut self, a: &Access, v: &Val, span: Span) -> Result<(), Diagnostic> {
+        let src = match v {
+            Val::Float(r) | Val::Int(r) => r.clone(),
+            Val::Str(_) | Val::Void => return Ok(()),
+        };
+        for c in 0..a.width.min(src.len() as u32) {
+            let base = a.root[(a.offset + c) as usize];
+            let s = src[c as usize];
+            let varying_into_uniform =
+                base.uniform && (!s.uniform || a.dynamic.is_some_and(|d| !d.index.uniform));
+            if varying_into_uniform {
+                return Err(Diagnostic::error(
+                    DiagCode::Internal,
+                    "the interpreter was asked to store a varying value into a uniform variable",
+                    span,
+                    "this store",
+                )
+                .with_note("the rate analysis should have made the variable varying; this is a bug"));
+            }
+            match a.dynamic {
+                None => self.emit.store(a.float, base, s),
+                Some(d) => self.emit.scatter(a.float, base, d.len, d.stride, d.index, d.signed, s),
+            }
+        }
+        Ok(())
+    }
+
+    /// `illuminance([category,] position [, axis, angle]) body`: the body once per bound
+    /// non-ambient light (of the category), in the lanes where the light is inside the cone.
+    fn illuminance(&mut self, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
+        let (category, rest) = match args.first().map(|a| self.shader.expr(*a).ty.base) {
+            Some(Base::String) => (self.string_of(args[0])?, &args[1..]),
+            _ => (None, args),
+        };
+        for k in 0..self.binding.lights.len() {
+            let light = &self.binding.lights[k];
+            if light.ambient || category.as_ref().is_some_and(|c| !category_matches(c, &light.categories)) {
+                continue;
+            }
+            self.light = Some(k);
+            self.next_statement();
+            let cone = match rest {
+                [_, axis, angle] => {
+                    let l = self.global_named("L");
+                    let axis = self.expr(*axis)?;
+                    let angle = self.expr(*angle)?;
+                    Some(self.inside_cone(l.floats(), axis.floats(), angle.floats()[0]))
+                }
+                _ => None,
+            };
+            let inner = self.block(body);
+            self.light = None;
+            let inner = inner?;
+            match cone {
+                Some(cond) => self.emit.out.push(Node::If { cond, then: inner, otherwise: Vec::new() }),
+                None => self.emit.out.push(Node::Function(inner)),
+            }
+        }
+        Ok(())
+    }
+
+    /// `illuminate(position [, axis, angle])` or `solar([axis, angle])` in a light shader: sets `L`
+    /// (from the light towards the surface point `Ps`) and runs the body where the point is lit.
+    fn emission(&mut self, solar: bool, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
+        self.next_statement();
+        let l = self.global_named("L");
+        let values: Vec<Val> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
+        let direction: Vec<Reg> = if solar {
+            match values.first() {
+                Some(axis) => axis.floats().to_vec(),
+                None => l.floats().to_vec(),
+            }
+        } else {
+            let ps = self.global_named("Ps");
+            let from = values[0].floats().to_vec();
+            (0..3).map(|c| self.emit.binary(Binary::Sub, ps.floats()[c], from[c])).collect()
+        };
+        let l_access = whole(l.clone());
+        self.store(&l_access, &Val::Float(direction), Span::default())?;
+        let (axis, angle) =
+            if solar { (values.first(), values.get(1)) } else { (values.get(1), values.get(2)) };
+        let cone = match (axis, angle) {
+            (Some(axis), Some(angle)) => {
+                let (axis, angle) = (axis.floats().to_vec(), angle.floats()[0]);
+                Some(self.inside_cone(l.floats(), &axis, angle))
+            }
+            _ => None,
+        };
+        let inner = self.block(body)?;
+        match cone {
+            Some(cond) => self.emit.out.push(Node::If { cond, then: inner, otherwise: Vec::new() }),
+            None => self.emit.out.push(Node::Function(inner)),
+        }
+        Ok(())
+    }
+
+    /// Whether the angle between `l` and `axis` is at most `angle`:
+    /// `dot(l, axis) >= cos(angle) * |l| * |axis|`, which needs no normalization.
+    fn inside_cone(&mut self, l: &[Reg], axis: &[Reg], angle: Reg) -> Reg {
+        let dot = self.dot(l, axis);
+        let ll = self.dot(l, l);
+        let aa = self.dot(axis, axis);
+        let lengths = self.emit.binary(Binary::Mul, ll, aa);
+        let lengths = self.emit.unary(Unary::Sqrt, lengths);
+        let cos = self.emit.unary(Unary::Cos, angle);
+        let bound = self.emit.binary(Binary::Mul, cos, lengths);
+        self.emit.compare(Compare::Ge, dot, bound)
+    }
+
+    /// A predefined variable of this shader by name (`L`, `Ps`), empty when it has none.
+    pub(super) fn global_named(&mut self, name: &str) -> Val {
+        match crate::sema::globals::lookup(name, self.shader.kind, self.shader.stanford) {
+            Some(g) => self.global(g),
+            None => Val::Float(Vec::new()),
+        }
+    }
+
+    /// A string-valued expression, resolved at compile time.
+    pub(super) fn string_of(&mut self, id: ExprId) -> Result<Option<smol_str::SmolStr>, Diagnostic> {
+        match self.expr(id)? {
+            Val::Str(s) => Ok(Some(s)),
+            _ => Ok(None),
+        }
+    }
+}
+
+/// The whole of a variable.
+fn whole(v: Val) -> Access {
+    let float = matches!(v, Val::Float(_));
+    let root = match v {
+        Val::Float(r) | Val::Int(r) => r,
+        _ => Vec::new(),
+    };
+    Access { width: root.len() as u32, root, float, offset: 0, dynamic: None }
+}
+
+/// The type of `x[i]` for `x` of type `ty`.
+pub(crate) fn element_type(ty: Type) -> Type {
+    match (ty.array, ty.base) {
+        (Some(_), b) => Type::of(b),
+        (None, Base::Matrix4) => Type::of(Base::Float4),
+        (None, Base::Matrix3) => Type::of(Base::Float3),
+        (None, Base::String) => Type::STRING,
+        _ => Type::FLOAT,
+    }
+}
+
+/// RenderMan's category selection: a light matches `"name"` when it is in that category, and
+/// `"-name"` when it is not.
+fn category_matches(selector: &str, categories: &[String]) -> bool {
+    match selector.strip_prefix('-') {
+        Some(name) => !categories.iter().any(|c| c == name),
+        None => selector.split(',').any(|s| categories.iter().any(|c| c == s.trim())),
+    }
+}

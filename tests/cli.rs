@@ -125,3 +125,45 @@ fn explain_prints_types_rates_and_stages() {
     assert_eq!(row("ambient_color"), ["ambient_color", "float4", "primitive group", "host (once per draw)"]);
     assert!(text.contains("surface shader `aniso` (Stanford style)"));
 }
+
+#[test]
+fn eval_prints_a_table_of_outputs() {
+    let out = patina(&[
+        "eval",
+        &example("plastic.sl"),
+        "--light",
+        "L=0,0,1 Cl=1,1,1",
+        "--at",
+        "N=0,0,1 Ng=0,0,1 I=0,0,-1",
+        "--at",
+        "N=0,0.6,0.8 Ng=0,0,1 I=0,0,-1",
+        "--set",
+        "Ks=0",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let rows: Vec<&str> = stdout.lines().collect();
+    assert!(rows[0].starts_with("point") && rows[0].contains("Ci") && rows[0].contains("Oi"), "{stdout}");
+    // Kd * N.L: 0.5 overhead, 0.5 * 0.8 tilted.
+    assert!(rows[1].contains("(0.5, 0.5, 0.5)"), "{stdout}");
+    assert!(rows[2].contains("(0.4, 0.4, 0.4)"), "{stdout}");
+}
+
+#[test]
+fn eval_reports_a_runaway_loop_at_its_position() {
+    let file =
+        scratch("loop.sl", b"surface s() {\n  float x = 0;\n  while (x < 1) { x += 0; }\n  Ci = x;\n}\n");
+    let out = patina(&["eval", file.to_str().unwrap(), "--budget", "100"]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("error[E0702]") && stderr.contains("loop.sl:3:3"), "{stderr}");
+}
+
+#[test]
+fn eval_rejects_malformed_points_with_one_line() {
+    let out = patina(&["eval", &example("plastic.sl"), "--at", "N=0,zero,1"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("`zero` is not a number"), "{stderr}");
+}

@@ -61,3 +61,153 @@ fn divergent_if_and_loops() {
         assert_eq!(out[0][p * 3], acc, "s = {s}");
     }
 }
+
+#[test]
+fn illuminance_runs_once_per_light_inside_its_cone() {
+    // Two lights: one overhead, one at grazing angle; the cone of 45 degrees around N keeps only
+    // the first. An ambient light is never visited by illuminance.
+    let src = "surface t() {
+        color sum = 0;
+        float count = 0;
+        illuminance(P, N, PI / 4) { sum += Cl * (normalize(L) . N); count += 1; }
+        Ci = sum; Oi = count;
+    }";
+    let binding = Binding {
+        lights: vec![
+            LightBinding::default(),
+            LightBinding::default(),
+            LightBinding { ambient: true, categories: vec![] },
+        ],
+        strings: vec![],
+    };
+    let program = compile(src, &binding);
+    let mut eval = Evaluator::<f64>::new(&program);
+    eval.set("L[0]", &[0.0, 0.0, 2.0]).unwrap();
+    eval.set("Cl[0]", &[1.0, 0.5, 0.25]).unwrap();
+    eval.set("L[1]", &[1.0, 0.0, 0.1]).unwrap();
+    eval.set("Cl[1]", &[7.0, 7.0, 7.0]).unwrap();
+    let out = eval.eval_points(2, &[("N", &[0.0, 0.0, 1.0, 1.0, 0.0, 0.0])], &["Ci", "Oi"]).unwrap();
+    assert_eq!(&out[0][..3], &[1.0, 0.5, 0.25], "only the overhead light, for N = +z");
+    assert_eq!(out[1][0], 1.0);
+    let grazing = 7.0 * (1.0 / (1.0f64 + 0.01).sqrt());
+    assert!((out[0][3] - grazing).abs() < 1e-12, "only the second light for N = +x: {}", out[0][3]);
+    assert_eq!(out[1][3], 1.0);
+}
+
+#[test]
+fn light_sums_follow_the_ri_definitions() {
+    let src = "surface t() { Ci = ambient() + diffuse(N); Oi = specular(N, vector(0, 0, 1), 0.25); }";
+    let binding = Binding {
+        lights: vec![LightBinding::default(), LightBinding { ambient: true, categories: vec![] }],
+        strings: vec![],
+    };
+    let program = compile(src, &binding);
+    let mut eval = Evaluator::<f64>::new(&program);
+    eval.set("L[0]", &[0.0, 3.0, 4.0]).unwrap();
+    eval.set("Cl[0]", &[1.0, 1.0, 1.0]).unwrap();
+    eval.set("Cl[1]", &[0.1, 0.2, 0.3]).unwrap();
+    let out = eval.eval_points(1, &[("N", &[0.0, 0.0, 1.0])], &["Ci", "Oi"]).unwrap();
+    // diffuse: Cl * normalize(L) . N = 0.8; ambient adds Cl of the ambient light.
+    for (c, a) in [0.1, 0.2, 0.3].iter().enumerate() {
+        assert!((out[0][c] - (a + 0.8)).abs() < 1e-12);
+    }
+    // specular: H = normalize((0, 0.6, 0.8) + (0, 0, 1)), (N . H)^(1/0.25).
+    let h = [0.0, 0.6, 1.8];
+    let nh = h[2] / (h[1] * h[1] + h[2] * h[2] as f64).sqrt();
+    assert!((out[1][0] - nh.powf(4.0)).abs() < 1e-12, "{} vs {}", out[1][0], nh.powf(4.0));
+}
+
+#[test]
+fn stanford_perlight_values_are_integrated_over_the_lights() {
+    let src = "surface shader float4 t(vertex float4 uv) {
+        perlight float3 contribution = rgb(Cl) * max(dot(L, {0, 0, 1}), 0);
+        return {integrate(contribution), uv[0]};
+    }";
+    let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
+    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
+    let binding = Binding { lights: vec![LightBinding::default(); 3], strings: vec![] };
+    let program = CpuProgram::compile(&checked.program.shaders[0], &binding).unwrap();
+    let slots: Vec<String> = program.slots().map(|(_, s)| s.name).collect();
+    let mut eval = Evaluator::<f64>::new(&program);
+    for k in 0..3 {
+        let l = ["L", "Cl"].map(|n| format!("{n}[{k}]"));
+        assert!(slots.contains(&l[0]) && slots.contains(&l[1]), "{slots:?}");
+        eval.set(&l[0], &[0.0, 0.0, k as f64 - 1.0]).unwrap();
+        eval.set(&l[1], &[1.0, 2.0, 3.0, 1.0]).unwrap();
+    }
+    let out = eval.eval_points(1, &[("uv", &[0.5, 0.0, 0.0, 1.0])], &["result"]).unwrap();
+    // Light 0 points down (clamped to 0), light 1 is perpendicular (0), light 2 points up (1).
+    assert_eq!(out[0], vec![1.0, 2.0, 3.0, 0.5]);
+}
+
+#[test]
+fn light_shaders_emit_inside_their_cone() {
+    let src = "light spot(float intensity = 2; point from = point(0, 0, 0); vector axis = vector(0, 0, 1)) {
+        illuminate(from, axis, radians(30)) { Cl = intensity / (L . L); }
+    }";
+    let program = compile(src, &Binding::default());
+    let mut eval = Evaluator::<f64>::new(&program);
+    // Surface points: on the axis at distance 2, and well outside the cone.
+    let out = eval.eval_points(2, &[("Ps", &[0.0, 0.0, 2.0, 5.0, 0.0, 1.0])], &["Cl", "L"]).unwrap();
+    assert_eq!(&out[0][..3], &[0.5, 0.5, 0.5]);
+    assert_eq!(&out[0][3..], &[0.0, 0.0, 0.0], "outside the cone the light is black");
+    assert_eq!(&out[1][..3], &[0.0, 0.0, 2.0], "L points from the light to the surface point");
+}
+
+#[test]
+fn nested_loops_with_break_continue_and_return_match_a_rust_reference() {
+    let src = "float f(float n) {
+            float i, j, acc = 0;
+            for (i = 0; i < n; i += 1) {
+                for (j = 0; j < 4; j += 1) {
+                    if (j == i) continue;
+                    if (i + j > 6) break 2;
+                    acc += i * 10 + j;
+                    if (acc > 200) return -acc;
+                }
+            }
+            return acc;
+        }
+        surface t() { Ci = f(s); }";
+    let reference = |n: f64| -> f64 {
+        let mut acc = 0.0;
+        let mut i = 0.0;
+        'outer: while i < n {
+            let mut j = 0.0;
+            while j < 4.0 {
+                if j == i {
+                    j += 1.0;
+                    continue;
+                }
+                if i + j > 6.0 {
+                    break 'outer;
+                }
+                acc += i * 10.0 + j;
+                if acc > 200.0 {
+                    return -acc;
+                }
+                j += 1.0;
+            }
+            i += 1.0;
+        }
+        acc
+    };
+    let s: Vec<f64> = (0..257).map(|k| (k % 9) as f64 * 0.75).collect();
+    let out = run(src, s.len(), &[("s", &s)], &["Ci"]);
+    for (p, n) in s.iter().enumerate() {
+        assert_eq!(out[0][p * 3], reference(*n), "n = {n}");
+    }
+}
+
+#[test]
+fn random_is_deterministic_uniform_and_differs_per_point() {
+    let out = run("surface t() { Ci = color(random(), random(), 0); }", 4000, &[], &["Ci"]);
+    let xs: Vec<f64> = out[0].chunks(3).map(|c| c[0]).collect();
+    let ys: Vec<f64> = out[0].chunks(3).map(|c| c[1]).collect();
+    assert!(xs.iter().chain(&ys).all(|x| (0.0..1.0).contains(x)));
+    let mean = xs.iter().sum::<f64>() / xs.len() as f64;
+    assert!((mean - 0.5).abs() < 0.02, "mean {mean}");
+    assert!(xs.iter().zip(&ys).filter(|(x, y)| x == y).count() < 5, "two call sites differ");
+    let again = run("surface t() { Ci = color(random(), random(), 0); }", 4000, &[], &["Ci"]);
+    assert_eq!(out, again);
+}

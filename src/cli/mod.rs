@@ -1,6 +1,7 @@
 //! Command-line arguments and the subcommands behind them.
 
 mod check;
+mod eval;
 mod explain;
 
 use std::path::PathBuf;
@@ -22,6 +23,46 @@ enum Command {
     Check(CheckArgs),
     /// Print each shader's parameters and variables with their types, rates and stages.
     Explain(ExplainArgs),
+    /// Run a shader on the CPU interpreter at given points and print its outputs.
+    Eval(EvalArgs),
+}
+
+/// Arguments of `patina eval`.
+#[derive(clap::Args, Debug)]
+pub struct EvalArgs {
+    /// The shader file.
+    file: PathBuf,
+    /// The shader to run (the file's first by default).
+    #[arg(long)]
+    shader: Option<String>,
+    /// One point: its per-point inputs, e.g. `--at "P=0.5,1,2 s=0.25"` (repeat for more points).
+    #[arg(long, value_name = "NAME=V,..")]
+    at: Vec<String>,
+    /// Inputs for every point: parameters, uniform variables, seeds (`dx(P)=1,0,0`), spaces
+    /// (`space:world=` sixteen values, row by row).
+    #[arg(long, value_name = "NAME=V,..")]
+    set: Vec<String>,
+    /// A bound light with its `L` and `Cl` at the surface (repeat for more lights).
+    #[arg(long, value_name = "L=..  Cl=..")]
+    light: Vec<String>,
+    /// A bound ambient light with its `Cl`.
+    #[arg(long, value_name = "Cl=..")]
+    ambient_light: Vec<String>,
+    /// The value of a `string` parameter (texture and space names are fixed at compile time).
+    #[arg(long, value_name = "NAME=TEXT")]
+    string: Vec<String>,
+    /// What to print (default: what the shader kind produces, and its output parameters).
+    #[arg(long, value_name = "NAME")]
+    output: Vec<String>,
+    /// Evaluate in double precision (the ground-truth mode) instead of f32.
+    #[arg(long)]
+    f64: bool,
+    /// The most iterations any loop may run.
+    #[arg(long, value_name = "N")]
+    budget: Option<u64>,
+    /// A directory to search for `#include` files.
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
 }
 
 /// Arguments of `patina explain`.
@@ -76,5 +117,6 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
         Command::Check(args) => check::run(args),
         Command::Explain(args) => explain::run(args),
+        Command::Eval(args) => eval::run(args),
     }
 }

@@ -48,7 +48,9 @@ impl Mask {
             Lanes::Varying(c) => {
                 let mut yes = Mask::none();
                 let mut no = Mask::none();
-                for (((yes, no), active), c) in yes.lanes.iter_mut().zip(&mut no.lanes).zip(&self.lanes).zip(c) {
+                for (((yes, no), active), c) in
+                    yes.lanes.iter_mut().zip(&mut no.lanes).zip(&self.lanes).zip(c)
+                {
                     *yes = *active && *c != 0;
                     *no = *active && *c == 0;
                 }

@@ -233,6 +233,12 @@ impl<'a> Lower<'a> {
 
     /// The registers of a predefined variable, made on first use.
     pub fn global(&mut self, g: &'static Global) -> Val {
+        // The constant predefined variables are values, not inputs.
+        match g.name {
+            "PI" => return Val::Float(vec![self.emit.float(std::f64::consts::PI)]),
+            "ncomps" => return Val::Float(vec![self.emit.float(3.0)]),
+            _ => {}
+        }
         let light = if g.perlight { self.light } else { None };
         let key = (g.name, light);
         if let Some(&s) = self.global_slot.get(&key) {

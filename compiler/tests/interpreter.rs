@@ -112,8 +112,8 @@ fn light_sums_follow_the_ri_definitions() {
         assert!((out[0][c] - (a + 0.8)).abs() < 1e-12);
     }
     // specular: H = normalize((0, 0.6, 0.8) + (0, 0, 1)), (N . H)^(1/0.25).
-    let h = [0.0, 0.6, 1.8];
-    let nh = h[2] / (h[1] * h[1] + h[2] * h[2] as f64).sqrt();
+    let h: [f64; 3] = [0.0, 0.6, 1.8];
+    let nh = h[2] / (h[1] * h[1] + h[2] * h[2]).sqrt();
     assert!((out[1][0] - nh.powf(4.0)).abs() < 1e-12, "{} vs {}", out[1][0], nh.powf(4.0));
 }
 

@@ -302,7 +302,7 @@ fn ctransform_between_two_spaces_goes_through_rgb() {
 fn an_unknown_colour_space_from_the_binding_is_an_error() {
     let src = r#"surface t(string space) { Ci = ctransform(space, Cs); }"#;
     let bound = |name: &str| Binding { strings: vec![("space".into(), name.into())], ..Binding::default() };
-    let err = try_compile(src, &bound("cmyk")).err().expect("cmyk is not a colour space");
+    let err = try_compile(src, &bound("cmyk")).expect_err("cmyk is not a colour space");
     assert_eq!(err.code, Code::UnknownSpace, "{}", err.message);
     assert!(try_compile(src, &bound("hsv")).is_ok());
 }
@@ -364,6 +364,9 @@ fn linear(x: f64, k: &[f64]) -> f64 {
     (1.0 - t) * k[first + 1] + t * k[first + 2]
 }
 
+/// A spline evaluated at a parameter over float knots.
+type Reference = fn(f64, &[f64]) -> f64;
+
 /// Parameters spanning the segments, both ends, and values outside [0, 1].
 const XS: [f64; 14] = [0.0, 0.1, 0.2, 0.25, 1.0 / 3.0, 0.4, 0.5, 0.6, 2.0 / 3.0, 0.8, 0.95, 1.0, -0.5, 1.7];
 
@@ -391,7 +394,7 @@ fn the_named_bases() {
     // left over), four Catmull-Rom, B-spline and linear ones.
     let knots = [0.5, 2.0, -1.0, 3.0, 0.0, 4.0, 1.0];
     let list = "0.5, 2, -1, 3, 0, 4, 1";
-    let cases: [(&str, fn(f64, &[f64]) -> f64); 4] =
+    let cases: [(&str, Reference); 4] =
         [("bezier", bezier), ("bspline", bspline), ("hermite", hermite), ("linear", linear)];
     for (name, reference) in cases {
         let src = format!("surface t() {{ Ci = spline(\"{name}\", s, {list}); }}");
@@ -424,7 +427,7 @@ fn colour_point_and_array_splines() {
     let colours = [[0.0, 1.0, 2.0], [1.0, 0.0, 0.0], [2.0, 4.0, 8.0], [3.0, 3.0, 3.0], [0.0, 0.0, 1.0]];
     let points = [[0.0, 0.0, 1.0], [1.0, 2.0, 3.0], [4.0, 1.0, 0.0], [2.0, 2.0, 2.0], [0.0, 5.0, 0.0]];
     let out = run_both(src, XS.len(), &[], &[("s", &XS)], &["Ci", "Oi"]);
-    let per_component = |f: fn(f64, &[f64]) -> f64, knots: &[[f64; 3]]| -> Vec<f64> {
+    let per_component = |f: Reference, knots: &[[f64; 3]]| -> Vec<f64> {
         XS.iter()
             .flat_map(|x| {
                 (0..3)

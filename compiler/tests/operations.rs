@@ -108,6 +108,8 @@ fn rounding_and_shaping_on_the_grid() {
     check_exact("mix(a, b, c)", 3, |x| x[0] * (1.0 - x[2]) + x[1] * x[2]);
     check_exact("clamp(a, b, c)", 3, |x| x[0].max(x[1]).min(x[2]));
     check_exact("smoothstep(a, b, c)", 3, |x| {
+        // max-then-min, not `clamp`: WGSL's clamp sends NaN to the low bound, Rust's keeps it.
+        #[allow(clippy::manual_clamp)]
         let t = ((x[2] - x[0]) / (x[1] - x[0])).max(0.0).min(1.0);
         t * t * (3.0 - 2.0 * t)
     });
@@ -183,7 +185,8 @@ const UINTS: [i64; 10] = [0, 1, 2, 7, 31, 32, 33, 0x8000_0000, 0xffff_fffe, 0xff
 
 #[test]
 fn int_arithmetic_wraps_and_divides_like_wgsl() {
-    let cases: [(&str, fn(i32, i32) -> i32); 10] = [
+    type IntOp = fn(i32, i32) -> i32;
+    let cases: [(&str, IntOp); 10] = [
         ("i + j", i32::wrapping_add),
         ("i - j", i32::wrapping_sub),
         ("i * j", i32::wrapping_mul),
@@ -211,7 +214,8 @@ fn int_arithmetic_wraps_and_divides_like_wgsl() {
 
 #[test]
 fn uint_arithmetic_wraps_and_divides_like_wgsl() {
-    let cases: [(&str, fn(u32, u32) -> u32); 7] = [
+    type UintOp = fn(u32, u32) -> u32;
+    let cases: [(&str, UintOp); 7] = [
         ("m + n", u32::wrapping_add),
         ("m - n", u32::wrapping_sub),
         ("m * n", u32::wrapping_mul),
@@ -255,8 +259,8 @@ fn integer_comparisons_and_builtins() {
 fn transcendentals_against_f64() {
     type F64 = fn(f64) -> f64;
     let cases: [(&str, F64, f64, f64); 9] = [
-        ("sin(a)", f64::sin, -3.14159, 3.14159),
-        ("cos(a)", f64::cos, -3.14159, 3.14159),
+        ("sin(a)", f64::sin, -std::f64::consts::PI, std::f64::consts::PI),
+        ("cos(a)", f64::cos, -std::f64::consts::PI, std::f64::consts::PI),
         ("tan(a)", f64::tan, -1.5, 1.5),
         ("asin(a)", f64::asin, -1.0, 1.0),
         ("acos(a)", f64::acos, -1.0, 1.0),

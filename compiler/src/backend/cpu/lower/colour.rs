@@ -79,7 +79,7 @@ impl Lower<'_> {
             "hsv" => {
                 let (v, s) = (c[2], c[1]);
                 let chroma = self.emit.binary(Binary::Mul, v, s);
-                self.from_hue(c[0], v, chroma)
+                self.rgb_of_hue(c[0], v, chroma)
             }
             "hsl" => {
                 // Chroma (1 - |2L - 1|) S; the largest channel is L + chroma / 2.
@@ -92,7 +92,7 @@ impl Lower<'_> {
                 let chroma = self.emit.binary(Binary::Mul, spread, s);
                 let half_chroma = self.emit.binary(Binary::Mul, chroma, half);
                 let top = self.emit.binary(Binary::Add, l, half_chroma);
-                self.from_hue(c[0], top, chroma)
+                self.rgb_of_hue(c[0], top, chroma)
             }
             "xyz" | "XYZ" => {
                 let m = invert3(&rgb_to_xyz_matrix());
@@ -169,7 +169,7 @@ impl Lower<'_> {
     /// Channel `n` (offsets 5, 3, 1 for red, green, blue) is `top - chroma * w` with
     /// `w = clamp(min(k, 4 - k), 0, 1)` and `k = (6 h + n) mod 6`: the hexcone's six sextants as
     /// one piecewise-linear ramp, without a branch per sextant.
-    fn from_hue(&mut self, hue: Reg, top: Reg, chroma: Reg) -> Vec<Reg> {
+    fn rgb_of_hue(&mut self, hue: Reg, top: Reg, chroma: Reg) -> Vec<Reg> {
         let (zero, one, four, six) =
             (self.emit.float(0.0), self.emit.float(1.0), self.emit.float(4.0), self.emit.float(6.0));
         let h6 = self.emit.binary(Binary::Mul, hue, six);
@@ -264,15 +264,8 @@ mod tests {
         // IEC 61966-2-1 (sRGB), to the four decimals it publishes.
         let published = [[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]];
         let m = rgb_to_xyz_matrix();
-        for i in 0..3 {
-            for j in 0..3 {
-                assert!(
-                    (m[i][j] - published[i][j]).abs() < 1e-4,
-                    "({i}, {j}): {} vs {}",
-                    m[i][j],
-                    published[i][j]
-                );
-            }
+        for (got, want) in m.iter().flatten().zip(published.iter().flatten()) {
+            assert!((got - want).abs() < 1e-4, "{got} vs {want}");
         }
     }
 
@@ -280,9 +273,9 @@ mod tests {
     fn invert3_inverts() {
         let m = [[2.0, 1.0, 0.5], [0.0, 3.0, 1.0], [1.0, -1.0, 4.0]];
         let inv = invert3(&m);
-        for i in 0..3 {
+        for (i, row) in m.iter().enumerate() {
             for j in 0..3 {
-                let p: f64 = (0..3).map(|k| m[i][k] * inv[k][j]).sum();
+                let p: f64 = row.iter().zip(&inv).map(|(a, inv_row)| a * inv_row[j]).sum();
                 let want = if i == j { 1.0 } else { 0.0 };
                 assert!((p - want).abs() < 1e-12, "({i}, {j}) = {p}");
             }

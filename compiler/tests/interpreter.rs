@@ -211,3 +211,19 @@ fn random_is_deterministic_uniform_and_differs_per_point() {
     let again = run("surface t() { Ci = color(random(), random(), 0); }", 4000, &[], &["Ci"]);
     assert_eq!(out, again);
 }
+
+#[test]
+fn string_parameters_with_defaults_are_compile_time_values() {
+    let src = "surface t(string space = \"world\") { Ci = color(transform(space, point(1, 2, 3))); }";
+    let program = compile(src, &Binding::default());
+    let mut eval = Evaluator::<f64>::new(&program);
+    // Current to world: a translation by (10, 0, 0) (row-vector convention, last row).
+    let mut m = [0.0; 16];
+    for i in 0..4 {
+        m[i * 5] = 1.0;
+    }
+    m[12] = 10.0;
+    eval.set("space:world", &m).unwrap();
+    let out = eval.eval_points(1, &[], &["Ci"]).unwrap();
+    assert_eq!(out[0], vec![11.0, 2.0, 3.0]);
+}

@@ -258,6 +258,14 @@ fn xyz_and_xyy_use_the_srgb_primaries_and_d65() {
 }
 
 #[test]
+fn xyy_without_luminance_is_black() {
+    // y = 0 leaves X and Z undefined (0 / 0); with Y = 0 the colour is black whatever x, y say.
+    let src = r#"surface t() { Ci = color "xyY" (comp(Cs, 0), comp(Cs, 1), comp(Cs, 2)); }"#;
+    let out = run_both(src, 2, &[], &[("Cs", &[0.3, 0.0, 0.0, 0.3127, 0.3290, 0.0])], &["Ci"]);
+    check(&out, 0, &[0.0; 6], "xyY with Y = 0");
+}
+
+#[test]
 fn yiq_is_ntsc() {
     let src = r#"surface t() { Ci = ctransform("YIQ", Cs); Oi = color "YIQ" (1, 0, 0); }"#;
     let out = run_both(src, 2, &[], &[("Cs", &[1.0, 0.0, 0.0, 0.2, 0.5, 0.9])], &["Ci", "Oi"]);
@@ -516,9 +524,13 @@ fn fresnel_at_normal_incidence() {
 
 #[test]
 fn fresnel_at_an_angle_and_total_internal_reflection() {
-    // Unit incident directions at 0 to 85 degrees from the normal in the x-z plane.
-    let angles: Vec<f64> = (0..18).map(|k| (k as f64 * 5.0).to_radians()).collect();
-    let dirs: Vec<f64> = angles.iter().flat_map(|a| [a.sin(), 0.0, -a.cos()]).collect();
+    // Unit incident directions at 0 to 90 degrees from the normal in the x-z plane, the last one
+    // exactly grazing (its cosine 0, not cos(pi / 2) in floating point).
+    let angles: Vec<f64> = (0..19).map(|k| (k as f64 * 5.0).to_radians()).collect();
+    let dirs: Vec<f64> = angles
+        .iter()
+        .flat_map(|a| if *a < 1.5 { [a.sin(), 0.0, -a.cos()] } else { [1.0, 0.0, 0.0] })
+        .collect();
     let normals: Vec<f64> = angles.iter().flat_map(|_| [0.0, 0.0, 1.0]).collect();
     for eta in [1.0 / 1.5, 1.5] {
         let out = run_both(

@@ -21,7 +21,9 @@ use crate::source::Span;
 /// A spline basis: the matrix `B` such that a segment is `[t^3 t^2 t 1] B [k0 k1 k2 k3]^T`, and the
 /// step between segments.
 struct Basis {
+    /// Rows are the coefficients of t^3, t^2, t and 1; column j weighs knot j.
     matrix: [[f64; 4]; 4],
+    /// Knots between the starts of consecutive segments.
     step: u32,
 }
 

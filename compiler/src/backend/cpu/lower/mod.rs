@@ -105,9 +105,10 @@ pub fn lower(shader: &Shader, binding: &Binding) -> Result<Lowered, Diagnostic> 
     let mut defaults = Vec::new();
     for &param in &shader.params {
         if let LocalKind::Param { default: Some(value), .. } = shader.local(param).kind {
+            // Strings are compile-time values: their defaults are read where they are used.
+            let Some(&slot) = l.local_slot.get(&(param, None)) else { continue };
             let stmt = Stmt::Store { place: Place::Local(param), value, span: shader.local(param).span };
             let code = l.block(std::slice::from_ref(&stmt))?;
-            let slot = l.local_slot[&(param, None)];
             defaults.push((slot, code));
         }
     }

@@ -47,8 +47,11 @@ enum Repeat {
 /// A parsed pattern.
 #[derive(Debug)]
 struct Pattern {
+    /// Anchored at the start (`^`).
     start: bool,
+    /// Anchored at the end (`$`).
     end: bool,
+    /// The items in order, each with its repetition.
     items: Vec<(Item, Repeat)>,
 }
 

@@ -23,7 +23,7 @@ use super::lower::{self, Binding, Lowered, SlotKind};
 use super::scalar::Real;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::Shader;
-use crate::ir::types::{Base, Type};
+use crate::ir::types::Type;
 use crate::source::Span;
 
 /// A shader compiled for the interpreter at one binding (valid for both precisions).
@@ -383,9 +383,4 @@ fn invert4(m: &[f64]) -> Vec<f64> {
         }
     }
     (0..16).map(|k| a[k / 4][4 + k % 4]).collect()
-}
-
-/// Whether a type's values live in the float file.
-pub fn is_float(ty: Type) -> bool {
-    !matches!(ty.base, Base::Bool | Base::Int | Base::Uint)
 }

@@ -1,6 +1,7 @@
 //! Built-in functions: math, shaping and vector functions composed from the emitter's scalar
 //! operations, the sums over the bound lights, and the geometric family (in `geometry`).
 
+use super::expr::pick;
 use super::{Lower, Val};
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, Reg, Ternary, Unary};
 use crate::diag::{Code as DiagCode, Diagnostic};
@@ -164,7 +165,7 @@ impl Lower<'_> {
                     .collect::<String>()
                     .into(),
             ),
-            "xyz_screen" => self.named_input("xyz_screen", 4),
+            "xyz_screen" => Val::Float(self.named_input("xyz_screen", ret, false)),
             "Du" | "Dv" | "Deriv" | "filterwidth" | "filterstep" | "area" | "calculatenormal" => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
@@ -222,22 +223,6 @@ impl Lower<'_> {
         Ok(Val::Float(sum))
     }
 
-    /// A caller-supplied varying input that is not a predefined variable (`xyz_screen`).
-    fn named_input(&mut self, name: &str, n: u32) -> Val {
-        if let Some(s) = self.slots.iter().position(|s| s.name == name) {
-            return Val::Float(self.slots[s].regs.clone());
-        }
-        let regs = self.emit.fixed_block(true, false, n);
-        self.slots.push(super::Slot {
-            name: name.to_string(),
-            kind: super::SlotKind::Global,
-            ty: crate::ir::types::Type::of(Base::Float4),
-            float: true,
-            regs: regs.clone(),
-        });
-        Val::Float(regs)
-    }
-
     /// Stores into the local passed as an `output` argument.
     pub(super) fn write_output(
         &mut self,
@@ -283,7 +268,7 @@ impl Lower<'_> {
         }
         let regs = vals[0].floats().to_vec();
         if name == "comp" {
-            let access = self.contiguous_regs(regs);
+            let access = self.emit.consecutive(true, regs);
             let d = super::stmt::Dynamic { index, signed: true, len: width, stride: 1 };
             let a = super::stmt::Access { root: access, float: true, offset: 0, width: 1, dynamic: Some(d) };
             return Ok(self.read(&a));
@@ -301,16 +286,6 @@ impl Lower<'_> {
         Ok(Val::Void)
     }
 
-    fn contiguous_regs(&mut self, regs: Vec<Reg>) -> Vec<Reg> {
-        let consecutive =
-            regs.windows(2).all(|w| w[1].index == w[0].index + 1 && w[1].uniform == w[0].uniform);
-        if consecutive {
-            return regs;
-        }
-        let uniform = regs.iter().all(|r| r.uniform);
-        regs.iter().map(|r| self.emit.copy(true, *r, uniform)).collect()
-    }
-
     /// `op` applied to each component.
     pub(crate) fn each(&mut self, op: Unary, a: &[Reg]) -> Val {
         Val::Float(a.iter().map(|x| self.emit.unary(op, *x)).collect())
@@ -319,7 +294,6 @@ impl Lower<'_> {
     /// `op` applied componentwise to three operands (scalars apply to every component).
     pub(crate) fn each3(&mut self, op: Ternary, a: &[Reg], b: &[Reg], c: &[Reg]) -> Val {
         let n = a.len().max(b.len()).max(c.len());
-        let pick = |r: &[Reg], i: usize| if r.len() == 1 { r[0] } else { r[i] };
         Val::Float((0..n).map(|i| self.emit.ternary(op, pick(a, i), pick(b, i), pick(c, i))).collect())
     }
 

@@ -123,7 +123,7 @@ impl Lower<'_> {
                     self.emit.int_binary(IntBinary::Add, start, j)
                 })
                 .collect();
-            (t, Knots::Gathered { root: self.consecutive(regs), indices, count })
+            (t, Knots::Gathered { root: self.emit.consecutive(true, regs), indices, count })
         };
         // Knot j's weight: column j of the basis as a cubic in t (Horner); None for a knot the basis
         // never uses (the linear basis's outer two).
@@ -177,17 +177,5 @@ impl Lower<'_> {
                 self.emit.gather(true, root[c], *count, components, indices[j], true)
             }
         }
-    }
-
-    /// `regs` as consecutive registers of one kind (what a gather indexes), copied if they are not.
-    fn consecutive(&mut self, regs: Vec<Reg>) -> Vec<Reg> {
-        let uniform = regs.iter().all(|r| r.uniform);
-        let consecutive =
-            regs.windows(2).all(|w| w[1].index == w[0].index + 1 && w[1].uniform == w[0].uniform);
-        if consecutive && regs.iter().all(|r| r.uniform == uniform) {
-            return regs;
-        }
-        // Copies made one after another get consecutive temporaries.
-        regs.iter().map(|r| self.emit.copy(true, *r, uniform)).collect()
     }
 }

@@ -193,6 +193,18 @@ impl Emitter {
         dst
     }
 
+    /// `regs` as consecutive registers of one kind (what an index needs), copied into fresh
+    /// temporaries (which are allocated consecutively) when they are not.
+    pub fn consecutive(&mut self, float: bool, regs: Vec<Reg>) -> Vec<Reg> {
+        let uniform = regs.iter().all(|r| r.uniform);
+        let consecutive =
+            regs.windows(2).all(|w| w[1].index == w[0].index + 1 && w[1].uniform == w[0].uniform);
+        if consecutive {
+            return regs;
+        }
+        regs.iter().map(|r| self.copy(float, *r, uniform)).collect()
+    }
+
     /// An element of a contiguous array of registers, at a run-time index.
     pub fn gather(&mut self, float: bool, base: Reg, len: u32, stride: u32, index: Reg, signed: bool) -> Reg {
         let dst = self.temp(float, base.uniform && index.uniform);

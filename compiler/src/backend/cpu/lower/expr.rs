@@ -96,14 +96,7 @@ impl Lower<'_> {
             Val::Float(r) | Val::Int(r) => r,
             _ => Vec::new(),
         };
-        let uniform = regs.iter().all(|r| r.uniform);
-        let consecutive =
-            regs.windows(2).all(|w| w[1].index == w[0].index + 1 && w[1].uniform == w[0].uniform);
-        let root = if consecutive && !regs.is_empty() {
-            regs
-        } else {
-            regs.iter().map(|r| self.emit.copy(float, *r, uniform)).collect()
-        };
+        let root = self.emit.consecutive(float, regs);
         Access { width: root.len() as u32, root, float, offset: 0, dynamic: None }
     }
 
@@ -395,7 +388,7 @@ impl Lower<'_> {
 }
 
 /// Component `i`, or the only one of a scalar.
-fn pick(r: &[Reg], i: usize) -> Reg {
+pub(super) fn pick(r: &[Reg], i: usize) -> Reg {
     if r.len() == 1 { r[0] } else { r[i] }
 }
 

@@ -266,7 +266,7 @@ impl Lower<'_> {
     /// to be "current". Near and far come from the [`CLIP_SLOT`] input; an empty range (among them
     /// the evaluator's default of zeros) counts as 1, so that an unset slot gives plain z.
     fn depth(&mut self, z: Reg) -> Reg {
-        let clip = self.clip_input();
+        let clip = self.named_input(CLIP_SLOT, Type { base: Base::Float, array: Some(2) }, true);
         let (near, far) = (clip[0], clip[1]);
         let range = self.emit.binary(Binary::Sub, far, near);
         let (zero, one) = (self.emit.float(0.0), self.emit.float(1.0));
@@ -274,22 +274,6 @@ impl Lower<'_> {
         let range = self.emit.select(true, empty, one, range);
         let from_near = self.emit.binary(Binary::Sub, z, near);
         self.emit.binary(Binary::Div, from_near, range)
-    }
-
-    /// The registers of the [`CLIP_SLOT`] input, made on first use.
-    fn clip_input(&mut self) -> Vec<Reg> {
-        if let Some(slot) = self.slots.iter().find(|s| s.name == CLIP_SLOT) {
-            return slot.regs.clone();
-        }
-        let regs = self.emit.fixed_block(true, true, 2);
-        self.slots.push(super::Slot {
-            name: CLIP_SLOT.to_string(),
-            kind: super::SlotKind::Global,
-            ty: Type { base: Base::Float, array: Some(2) },
-            float: true,
-            regs: regs.clone(),
-        });
-        regs
     }
 
     /// `fresnel(I, N, eta, Kr, Kt [, R, T])`: the Fresnel reflectance of a dielectric for

@@ -284,6 +284,24 @@ impl<'a> Lower<'a> {
         self.slot_val(self.slots.len() - 1)
     }
 
+    /// A caller-supplied float input that is not a predefined variable (`xyz_screen`, the clipping
+    /// range of `depth`), made on first use.
+    pub fn named_input(&mut self, name: &str, ty: Type, uniform: bool) -> Vec<Reg> {
+        if let Some(slot) = self.slots.iter().find(|s| s.name == name) {
+            return slot.regs.clone();
+        }
+        let n = layout(ty).map_or(0, |(_, n)| n);
+        let regs = self.emit.fixed_block(true, uniform, n);
+        self.slots.push(Slot {
+            name: name.to_string(),
+            kind: SlotKind::Global,
+            ty,
+            float: true,
+            regs: regs.clone(),
+        });
+        regs
+    }
+
     /// The matrices of a named coordinate system: (current to space, space to current).
     pub fn space(&mut self, name: &str) -> (Vec<Reg>, Vec<Reg>) {
         let slot = match self.space_slot.get(name) {

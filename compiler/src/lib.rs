@@ -7,6 +7,7 @@ pub mod ir;
 pub mod opt;
 pub mod sema;
 pub mod source;
+pub mod split;
 pub mod stdlib;
 pub mod syntax;
 

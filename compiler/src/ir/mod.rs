@@ -188,6 +188,26 @@ pub enum ExprKind {
     Seed(Input, Axis),
 }
 
+impl ExprKind {
+    /// Calls `f` with each operand, in order (a built-in's `output` arguments included).
+    pub fn for_each_operand(&self, mut f: impl FnMut(ExprId)) {
+        match self {
+            ExprKind::Literal(_) | ExprKind::Local(_) | ExprKind::Global(_) | ExprKind::Seed(..) => {}
+            ExprKind::Unary(_, a) | ExprKind::Convert(a) | ExprKind::FromSpace { value: a, .. } => f(*a),
+            ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => {
+                f(*a);
+                f(*b);
+            }
+            ExprKind::Select(c, a, b) => {
+                f(*c);
+                f(*a);
+                f(*b);
+            }
+            ExprKind::Construct(parts) | ExprKind::Builtin(_, parts) => parts.iter().copied().for_each(f),
+        }
+    }
+}
+
 /// An expression with its type, rate and span.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Expr {

@@ -51,6 +51,15 @@ use rules::Diff;
 /// that needs. Existing expression ids stay valid: consumers are overwritten in place, new
 /// expressions and locals are appended. A shader without consumers is left as it is.
 pub fn differentiate(shader: &mut Shader) {
+    // Also what makes the pass idempotent: its output has no consumers, and its arena order is no
+    // longer what the analysis walks.
+    let has_consumers = shader
+        .exprs
+        .iter()
+        .any(|e| matches!(&e.kind, crate::ir::ExprKind::Builtin(b, _) if analysis::is_consumer(b)));
+    if !has_consumers {
+        return;
+    }
     let mut needs = analysis::analyse(shader);
     if needs.consumers.is_empty() {
         return;

@@ -1,0 +1,191 @@
+//! Which stage can compute each value: the stage of its rate, raised by what the value reads and
+//! by the control flow it is computed under.
+//!
+//! Rates already say this for well-typed programs; placement recomputes it over the whole body so
+//! that the split never moves a value to a stage that cannot compute it: a variable stored inside
+//! `illuminance` is a fragment-stage value whatever its declared rate (lights are evaluated per
+//! fragment), and a variable stored under a fragment-rate condition or after a fragment-rate early
+//! exit belongs to the fragment stage.
+
+use rustc_hash::FxHashMap;
+
+use super::{StageKind, Var};
+use crate::ir::types::{Frequency, Rate};
+use crate::ir::{Block, ExprId, ExprKind, Place, Shader, Stmt};
+
+/// The stage that computes values of `rate`.
+pub(crate) fn stage_of(rate: Rate) -> StageKind {
+    if rate.perlight {
+        return StageKind::Fragment;
+    }
+    match rate.frequency {
+        Frequency::Constant | Frequency::PrimitiveGroup => StageKind::Host,
+        Frequency::Vertex => StageKind::Vertex,
+        Frequency::Fragment => StageKind::Fragment,
+    }
+}
+
+/// The variable a place stores into.
+pub(crate) fn root(place: &Place) -> Var {
+    match place {
+        Place::Local(l) => Var::Local(*l),
+        Place::Global(g) => Var::Global(g.name),
+        Place::Index(inner, _) => root(inner),
+    }
+}
+
+/// The earliest stage able to compute each variable and expression of a shader.
+pub(crate) struct Placement {
+    /// Variables that are stored somewhere in the body, with their stage.
+    pub written: FxHashMap<Var, StageKind>,
+    /// The stage of each expression.
+    expr: Vec<StageKind>,
+}
+
+impl Placement {
+    /// Computes the placement of every value of `shader`.
+    pub fn new(shader: &Shader) -> Placement {
+        let mut p = Placement { written: FxHashMap::default(), expr: Vec::new() };
+        // Stages only rise, and there are three: the fixpoint is reached in a few rounds.
+        loop {
+            p.expr = exprs(shader, &p.written);
+            let before = p.written.clone();
+            p.block(shader, &shader.body, StageKind::Host, false);
+            if p.written == before {
+                p.expr = exprs(shader, &p.written);
+                return p;
+            }
+        }
+    }
+
+    /// The stage of expression `id`.
+    pub fn of(&self, id: ExprId) -> StageKind {
+        self.expr[id.0 as usize]
+    }
+
+    fn raise(&mut self, var: Var, stage: StageKind) {
+        let entry = self.written.entry(var).or_insert(StageKind::Host);
+        *entry = (*entry).max(stage);
+    }
+
+    fn block(&mut self, shader: &Shader, block: &Block, control: StageKind, light: bool) {
+        let mut control = control;
+        for stmt in block {
+            self.statement(shader, stmt, control, light);
+            // Everything after a statement that may leave early depends on why it left.
+            control = control.max(self.exit_stage(stmt));
+        }
+    }
+
+    fn statement(&mut self, shader: &Shader, stmt: &Stmt, control: StageKind, light: bool) {
+        let at = |s: StageKind| if light { StageKind::Fragment } else { s.max(control) };
+        match stmt {
+            Stmt::Store { place, value, .. } => {
+                let stage = at(self.of(*value).max(self.place_stage(place)));
+                self.raise(root(place), stage);
+            }
+            Stmt::Eval(id) => {
+                if let ExprKind::Builtin(b, args) = &shader.expr(*id).kind {
+                    let stage = at(self.of(*id));
+                    for (param, arg) in b.params.iter().zip(args) {
+                        if let (true, ExprKind::Local(l)) = (param.output, &shader.expr(*arg).kind) {
+                            self.raise(Var::Local(*l), stage);
+                        }
+                    }
+                }
+            }
+            Stmt::If { cond, then, otherwise } => {
+                let inner = control.max(self.of(*cond));
+                self.block(shader, then, inner, light);
+                self.block(shader, otherwise, inner, light);
+            }
+            Stmt::Loop { cond, body, step, .. } => {
+                let mut inner = control.max(cond.map_or(StageKind::Host, |c| self.of(c)));
+                inner = inner.max(self.exits_in(body));
+                self.block(shader, body, inner, light);
+                self.block(shader, step, inner, light);
+            }
+            Stmt::Inline { body, .. } => self.block(shader, body, control, light),
+            Stmt::Illuminance { body, .. } => self.block(shader, body, StageKind::Fragment, true),
+            Stmt::Emit { body, .. } => self.block(shader, body, StageKind::Fragment, light),
+            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+        }
+    }
+
+    fn place_stage(&self, place: &Place) -> StageKind {
+        match place {
+            Place::Local(_) | Place::Global(_) => StageKind::Host,
+            Place::Index(inner, index) => self.place_stage(inner).max(self.of(*index)),
+        }
+    }
+
+    /// The stage of the conditions under which `stmt` may leave its block early (`Host` when it
+    /// never does, or does unconditionally).
+    fn exit_stage(&self, stmt: &Stmt) -> StageKind {
+        match stmt {
+            Stmt::If { cond, then, otherwise } => {
+                let inner = self.exits_in(then).max(self.exits_in(otherwise));
+                if leaves(then) || leaves(otherwise) { inner.max(self.of(*cond)) } else { inner }
+            }
+            Stmt::Inline { body, .. } => self.exits_in(body),
+            _ => StageKind::Host,
+        }
+    }
+
+    fn exits_in(&self, block: &Block) -> StageKind {
+        block.iter().map(|s| self.exit_stage(s)).max().unwrap_or(StageKind::Host)
+    }
+}
+
+/// Whether a block contains a `break`, `continue` or `return` (at any depth outside loops).
+fn leaves(block: &Block) -> bool {
+    block.iter().any(|s| match s {
+        Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => true,
+        Stmt::If { then, otherwise, .. } => leaves(then) || leaves(otherwise),
+        Stmt::Inline { body, .. } => leaves(body),
+        _ => false,
+    })
+}
+
+/// The stage of every expression, given the stages of the variables written in the body.
+fn exprs(shader: &Shader, written: &FxHashMap<Var, StageKind>) -> Vec<StageKind> {
+    let mut memo: Vec<Option<StageKind>> = vec![None; shader.exprs.len()];
+    for id in 0..shader.exprs.len() {
+        expr(shader, written, &mut memo, ExprId(id as u32));
+    }
+    memo.into_iter().map(|s| s.unwrap_or(StageKind::Fragment)).collect()
+}
+
+fn expr(
+    shader: &Shader,
+    written: &FxHashMap<Var, StageKind>,
+    memo: &mut Vec<Option<StageKind>>,
+    id: ExprId,
+) -> StageKind {
+    if let Some(s) = memo[id.0 as usize] {
+        return s;
+    }
+    let e = shader.expr(id);
+    let mut stage = stage_of(e.rate);
+    match &e.kind {
+        ExprKind::Local(l) => {
+            let own = stage_of(shader.local(*l).rate);
+            stage = stage.max(written.get(&Var::Local(*l)).map_or(own, |w| (*w).max(own)));
+        }
+        ExprKind::Global(g) => {
+            if let Some(w) = written.get(&Var::Global(g.name)) {
+                stage = stage.max(*w);
+            }
+        }
+        ExprKind::Seed(..) => stage = StageKind::Fragment,
+        kind => {
+            let mut operands = Vec::new();
+            kind.for_each_operand(|o| operands.push(o));
+            for o in operands {
+                stage = stage.max(crate::split::placement::expr(shader, written, memo, o));
+            }
+        }
+    }
+    memo[id.0 as usize] = Some(stage);
+    stage
+}

@@ -1,4 +1,5 @@
 //! Backends: what runs the typed IR. `cpu` is the interpreter, the reference the GPU is measured
-//! against (issue 5; so far its per-lane semantics). The WGSL backend arrives with issue 6.
+//! against; `wgsl` builds naga modules for the GPU from the split stages.
 
 pub mod cpu;
+pub mod wgsl;

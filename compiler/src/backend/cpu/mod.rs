@@ -13,3 +13,4 @@ pub mod scalar;
 
 pub use eval::{CpuProgram, EvalError, Evaluator, SlotId, SlotInfo};
 pub use lower::{Binding, LightBinding, SlotKind};
+pub(crate) use lower::{category_matches, element_type};

@@ -23,6 +23,7 @@ use crate::ir::types::{Base, Frequency, Type};
 use crate::ir::{Axis, ExprId, ExprKind, Input, LocalId, LocalKind, Place, Shader, Stmt};
 use crate::sema::globals::Global;
 pub(crate) use emit::{Emitter, Val};
+pub(crate) use stmt::{category_matches, element_type};
 
 /// What the program is compiled for: the decisions that change its code.
 #[derive(Clone, Debug, Default, PartialEq)]

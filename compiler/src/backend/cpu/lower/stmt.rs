@@ -377,7 +377,7 @@ pub(crate) fn element_type(ty: Type) -> Type {
 
 /// RenderMan's category selection: a light matches `"name"` when it is in that category, and
 /// `"-name"` when it is not.
-fn category_matches(selector: &str, categories: &[String]) -> bool {
+pub(crate) fn category_matches(selector: &str, categories: &[String]) -> bool {
     match selector.strip_prefix('-') {
         Some(name) => !categories.iter().any(|c| c == name),
         None => selector.split(',').any(|s| categories.iter().any(|c| c == s.trim())),

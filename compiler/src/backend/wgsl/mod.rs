@@ -1,0 +1,164 @@
+//! The WGSL backend: the split stages of a shader, and the light shaders bound to it, as one naga
+//! module with a vertex and a fragment entry point, validated, with its interface as data.
+//!
+//! - `module`: naga types, private variables, the uniform block and its layout.
+//! - `func`: one naga function under construction (`Emit` ranges kept right).
+//! - `body`: statements and expressions; `builtins` and `geometry`: the built-in functions.
+//! - `entry`: the entry points (geometry, varyings, derivative seeds, lights, output).
+//! - `interface`: what the runtime binds and fills, as data.
+//!
+//! The module is handed to wgpu as naga IR (`ShaderSource::Naga`); [`GpuProgram::wgsl`] writes it
+//! as WGSL text for users.
+
+mod body;
+mod builtins;
+mod entry;
+mod func;
+mod geometry;
+pub mod interface;
+mod module;
+mod uses;
+
+use naga::Span as NSpan;
+
+use crate::backend::cpu::LightBinding;
+use crate::diag::{Code, Diagnostic};
+use crate::ir::{Shader, Stmt};
+use crate::source::Span;
+use crate::split::Stages;
+use body::Translator;
+use interface::Interface;
+use module::ModuleBuilder;
+
+/// A light shader bound to a surface, with the values of its string parameters.
+#[derive(Clone, Debug)]
+pub struct BoundLight<'a> {
+    /// The light shader (checked and differentiated).
+    pub shader: &'a Shader,
+    /// Its string parameters' values.
+    pub strings: Vec<(String, String)>,
+    /// Its categories (for `illuminance("category", ...)`).
+    pub categories: Vec<String>,
+}
+
+/// A compiled GPU program: the module, naga's analysis of it, and its interface.
+#[derive(Clone, Debug)]
+pub struct GpuProgram {
+    /// The validated module (one vertex and one fragment entry point).
+    pub module: naga::Module,
+    /// The validator's information (needed to write WGSL).
+    pub info: naga::valid::ModuleInfo,
+    /// What the runtime binds and fills.
+    pub interface: Interface,
+}
+
+impl GpuProgram {
+    /// The module as WGSL text.
+    pub fn wgsl(&self) -> Result<String, Diagnostic> {
+        naga::back::wgsl::write_string(&self.module, &self.info, naga::back::wgsl::WriterFlags::empty())
+            .map_err(|e| internal(Span::default(), format!("internal error: writing WGSL failed: {e}")))
+    }
+}
+
+/// Whether a light shader is ambient: it has no `illuminate` or `solar` (RenderMan's rule).
+pub fn is_ambient(light: &Shader) -> bool {
+    fn emits(block: &[Stmt]) -> bool {
+        block.iter().any(|s| match s {
+            Stmt::Emit { .. } => true,
+            Stmt::If { then, otherwise, .. } => emits(then) || emits(otherwise),
+            Stmt::Loop { body, step, .. } => emits(body) || emits(step),
+            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } => emits(body),
+            _ => false,
+        })
+    }
+    !emits(&light.body)
+}
+
+/// Compiles the stages of a surface shader with its bound lights into a validated module.
+pub fn compile(
+    stages: &Stages,
+    lights: &[BoundLight],
+    strings: &[(String, String)],
+) -> Result<GpuProgram, Diagnostic> {
+    let bindings: Vec<LightBinding> = lights
+        .iter()
+        .map(|l| LightBinding { ambient: is_ambient(l.shader), categories: l.categories.clone() })
+        .collect();
+    let mut mb = ModuleBuilder::new();
+
+    let mut light_functions = Vec::new();
+    for (k, light) in lights.iter().enumerate() {
+        if light.shader.stanford {
+            return Err(Diagnostic::error(
+                Code::NotExecutable,
+                "Stanford-style light shaders cannot be bound on the GPU yet",
+                light.shader.span,
+                "this light",
+            )
+            .with_help("bind a RenderMan-style light (`illuminate` or `solar`)"));
+        }
+        let prefix = format!("l{k}_");
+        let mut t =
+            Translator::new(&mut mb, light.shader, &prefix, &[], &light.strings, &format!("light{k}"));
+        t.owner = Some(k);
+        t.block(&light.shader.body)?;
+        let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
+        drop(t);
+        light_functions.push((mb.module.functions.append(f, NSpan::UNDEFINED), light.shader));
+    }
+    let body = |mb: &mut ModuleBuilder, shader: &Shader, name: &str| -> Result<_, Diagnostic> {
+        let mut t = Translator::new(mb, shader, "", &bindings, strings, name);
+        t.block(&shader.body)?;
+        let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
+        drop(t);
+        Ok(mb.module.functions.append(f, NSpan::UNDEFINED))
+    };
+    let vertex_body = body(&mut mb, &stages.vertex, "vertex_body")?;
+    let fragment_body = body(&mut mb, &stages.fragment, "fragment_body")?;
+    let (attributes, varyings) =
+        entry::entry_points(&mut mb, stages, vertex_body, fragment_body, &light_functions, strings);
+    let (uniforms, uniform_size) = mb
+        .finish_uniforms()
+        .map_err(|e| internal(stages.fragment.span, format!("internal error: uniform layout: {e}")))?;
+    let module = mb.module;
+    let info =
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
+            .validate(&module)
+            .map_err(|e| {
+                internal(
+                    stages.fragment.span,
+                    format!("internal error: the generated module does not validate: {}", chain(&e)),
+                )
+            })?;
+    let output = if stages.fragment.result_local.is_some() { "result" } else { "Ci, Oi" };
+    let interface = Interface {
+        vertex_entry: "vs_main".into(),
+        fragment_entry: "fs_main".into(),
+        uniforms,
+        uniform_size,
+        attributes,
+        varyings,
+        output: output.into(),
+    };
+    Ok(GpuProgram { module, info, interface })
+}
+
+/// An error's message with its causes.
+fn chain(e: &dyn std::error::Error) -> String {
+    let mut s = e.to_string();
+    let mut source = e.source();
+    while let Some(c) = source {
+        s.push_str(" -> ");
+        s.push_str(&c.to_string());
+        source = c.source();
+    }
+    s
+}
+
+fn internal(span: Span, message: String) -> Diagnostic {
+    Diagnostic::error(Code::Internal, message, span, "while compiling this shader")
+        .with_help("this is a bug in Patina's WGSL backend; please report it with the shader")
+}
+
+#[cfg(test)]
+mod tests;

@@ -16,6 +16,7 @@ mod entry;
 mod func;
 mod geometry;
 pub mod interface;
+mod kernel;
 mod module;
 mod uses;
 
@@ -28,6 +29,7 @@ use crate::source::Span;
 use crate::split::Stages;
 use body::Translator;
 use interface::Interface;
+pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel};
 use module::ModuleBuilder;
 
 /// A light shader bound to a surface, with the values of its string parameters.
@@ -144,7 +146,7 @@ pub fn compile(
 }
 
 /// An error's message with its causes.
-fn chain(e: &dyn std::error::Error) -> String {
+pub(crate) fn chain(e: &dyn std::error::Error) -> String {
     let mut s = e.to_string();
     let mut source = e.source();
     while let Some(c) = source {
@@ -155,7 +157,7 @@ fn chain(e: &dyn std::error::Error) -> String {
     s
 }
 
-fn internal(span: Span, message: String) -> Diagnostic {
+pub(crate) fn internal(span: Span, message: String) -> Diagnostic {
     Diagnostic::error(Code::Internal, message, span, "while compiling this shader")
         .with_help("this is a bug in Patina's WGSL backend; please report it with the shader")
 }

@@ -82,3 +82,19 @@ fn every_example_surface_validates_and_reparses() {
     }
     assert!(failures.is_empty(), "{} of {count} failed:\n{}", failures.len(), failures.join("\n"));
 }
+
+#[test]
+fn kernels_validate_and_lay_out_their_records() {
+    let checked = crate::check_source(
+        "k.sl",
+        "surface k(float Kd = 0.5; uniform int n = 2) { Ci = color(Kd * s, Du(s), n); }",
+        &MemoryLoader::default(),
+    );
+    let mut shader = checked.program.shaders[0].clone();
+    crate::opt::derivs::differentiate(&mut shader);
+    let k = super::compile_kernel(&shader, &[], &[], &["Kd", "n", "s", "dx(s)", "du"], &["Ci"]).unwrap();
+    assert_eq!(k.input_stride, 5);
+    assert_eq!(k.output_stride, 3);
+    assert_eq!(k.inputs[3].offset, 3);
+    assert!(super::compile_kernel(&shader, &[], &[], &["nope"], &["Ci"]).is_err());
+}

@@ -1,1 +1,10 @@
-//! The runtime arrives with issue 6 (wgpu device, pipelines, scenes, the CPU reference renderer).
+//! Patina's runtime: the wgpu renderer, meshes, cameras, scenes, images and the CPU reference
+//! rasterizer that the GPU output is measured against.
+
+pub mod camera;
+pub mod gpu;
+pub mod image;
+pub mod mesh;
+pub mod raster;
+pub mod render;
+pub mod scene;

@@ -1,8 +1,10 @@
 //! Command-line arguments and the subcommands behind them.
 
 mod check;
+mod compile;
 mod eval;
 mod explain;
+mod render;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -25,6 +27,51 @@ enum Command {
     Explain(ExplainArgs),
     /// Run a shader on the CPU interpreter at given points and print its outputs.
     Eval(EvalArgs),
+    /// Compile a surface shader (with its lights) to WGSL and a JSON description of its interface.
+    Compile(CompileArgs),
+    /// Render a scene to a PNG, on the GPU (the CPU reference when there is none, or when asked).
+    Render(RenderArgs),
+}
+
+/// Arguments of `patina compile`.
+#[derive(clap::Args, Debug)]
+pub struct CompileArgs {
+    /// The shader file.
+    file: PathBuf,
+    /// The surface shader to compile (the file's first by default).
+    #[arg(long)]
+    shader: Option<String>,
+    /// A light to bind: `NAME` (a light shader of FILE), `PATH` or `PATH:NAME` (repeat for more).
+    #[arg(long, value_name = "LIGHT")]
+    light: Vec<String>,
+    /// Where to write NAME.wgsl and NAME.json.
+    #[arg(short, long, value_name = "DIR", default_value = ".")]
+    output: PathBuf,
+    /// A directory to search for `#include` files.
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
+}
+
+/// Which renderer `patina render` uses.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BackendChoice {
+    /// wgpu on any adapter (lavapipe without a GPU); the CPU when no adapter exists.
+    Gpu,
+    /// The CPU reference renderer.
+    Cpu,
+}
+
+/// Arguments of `patina render`.
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// The scene file (TOML).
+    scene: PathBuf,
+    /// The PNG to write.
+    #[arg(short, long, value_name = "PNG", default_value = "out.png")]
+    output: PathBuf,
+    /// The renderer.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Gpu)]
+    backend: BackendChoice,
 }
 
 /// Arguments of `patina eval`.
@@ -118,5 +165,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Check(args) => check::run(args),
         Command::Explain(args) => explain::run(args),
         Command::Eval(args) => eval::run(args),
+        Command::Compile(args) => compile::run(args),
+        Command::Render(args) => render::run(args),
     }
 }

@@ -70,7 +70,8 @@ pub(crate) fn entry_points(
     let mut crossings: Vec<Crossing> = Vec::new();
     // Lights are evaluated at the surface point and orientation, and Stanford's H needs E.
     let mut carried_globals = fragment_uses.globals.clone();
-    if !lights.is_empty() {
+    // Ng is computed from P's derivatives, oriented by N.
+    if !lights.is_empty() || fragment_uses.has_global("Ng") {
         for name in ["P", "N", "E"] {
             if let Some(g) = crate::sema::globals::lookup(name, surface.kind, surface.stanford)
                 && !carried_globals.iter().any(|c| c.name == name)
@@ -221,7 +222,9 @@ fn vertex_entry(
         UniformSource::Geometry { matrix: GeometryMatrix::ObjectToCamera },
     );
     let p_cam = t.transform_by(oc, args[0], 1.0);
-    let needed = |name: &str| uses.has_global(name) || fragment_uses.has_global(name);
+    let carried =
+        |name: &str| crossings.iter().any(|c| matches!(c.what, Carried::Global(g) if g.name == name));
+    let needed = |name: &str| uses.has_global(name) || fragment_uses.has_global(name) || carried(name);
     let stanford = shader.stanford;
     let set = |t: &mut Translator, name: &str, value: Value| {
         if let Some(g) = crate::sema::globals::lookup(name, shader.kind, stanford) {

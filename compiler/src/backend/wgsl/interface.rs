@@ -136,7 +136,8 @@ pub struct Interface {
     pub attributes: Vec<Attribute>,
     /// The varyings.
     pub varyings: Vec<Varying>,
-    /// What the fragment stage writes to `@location(0)`: RGB and alpha from `Ci` and `Oi`, or a
-    /// Stanford shader's result.
+    /// What the fragment stage writes to `@location(0)`: `Ci, Oi` (RGB from `Ci`, alpha the mean
+    /// of `Oi`), `Ci` (alpha 1: the shader never writes `Oi`), or `result` (a Stanford shader's
+    /// float4).
     pub output: String,
 }

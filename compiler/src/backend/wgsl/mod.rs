@@ -132,7 +132,13 @@ pub fn compile(
                     format!("internal error: the generated module does not validate: {}", chain(&e)),
                 )
             })?;
-    let output = if stages.fragment.result_local.is_some() { "result" } else { "Ci, Oi" };
+    let output = if stages.fragment.result_local.is_some() {
+        "result"
+    } else if uses::Uses::of(&stages.fragment, &stages.fragment.body).written.contains("Oi") {
+        "Ci, Oi"
+    } else {
+        "Ci"
+    };
     let interface = Interface {
         vertex_entry: "vs_main".into(),
         fragment_entry: "fs_main".into(),

@@ -1,0 +1,125 @@
+//! Opening the adapter and device, catching wgpu's errors, and reading buffers back.
+
+use super::GpuError;
+use std::sync::{Arc, Mutex, mpsc};
+use wgpu::util::DeviceExt;
+
+/// A wgpu device and queue, with the texture format chosen for sampled textures.
+pub struct Gpu {
+    pub(super) adapter: wgpu::Adapter,
+    pub(super) device: wgpu::Device,
+    pub(super) queue: wgpu::Queue,
+    /// `Rgba32Float` when the device can filter it, else `Rgba16Float`.
+    pub(super) texture_format: wgpu::TextureFormat,
+    /// Errors raised outside any error scope (the default handler would panic).
+    uncaptured: Arc<Mutex<Option<String>>>,
+}
+
+impl Gpu {
+    /// Opens the first adapter wgpu offers (Vulkan unless `WGPU_BACKEND` says otherwise) and a
+    /// device with the adapter's best limits.
+    pub fn new() -> Result<Gpu, GpuError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+        desc.flags = wgpu::InstanceFlags::default().with_env();
+        let instance = wgpu::Instance::new(desc);
+        let options = wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::None,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            ..Default::default()
+        };
+        let adapter = pollster::block_on(instance.request_adapter(&options))
+            .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        // Float32 filtering lets textures keep full precision; blending on Rgba32Float targets
+        // needs its own feature. Both are optional: without them we degrade or report errors.
+        let wanted = wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::FLOAT32_BLENDABLE;
+        let features = adapter.features() & wanted;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("patina"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device(e.to_string()))?;
+        let uncaptured = Arc::new(Mutex::new(None));
+        let sink = Arc::clone(&uncaptured);
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            if let Ok(mut slot) = sink.lock() {
+                slot.get_or_insert_with(|| e.to_string());
+            }
+        }));
+        let texture_format = if features.contains(wgpu::Features::FLOAT32_FILTERABLE) {
+            wgpu::TextureFormat::Rgba32Float
+        } else {
+            wgpu::TextureFormat::Rgba16Float
+        };
+        Ok(Gpu { adapter, device, queue, texture_format, uncaptured })
+    }
+
+    /// One line naming the adapter, its backend and device type, e.g. `llvmpipe (LLVM 15) (Vulkan, Cpu)`.
+    pub fn adapter_description(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type)
+    }
+
+    /// Runs `f` inside validation, out-of-memory and internal error scopes and turns the first error
+    /// wgpu reports (inside the scopes or, earlier, outside them) into `GpuError::Wgpu`.
+    pub(super) fn scoped<T>(&self, f: impl FnOnce() -> T) -> Result<T, GpuError> {
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let value = f();
+        // Scopes form a stack: pop the innermost first.
+        let errors = [
+            pollster::block_on(validation.pop()),
+            pollster::block_on(internal.pop()),
+            pollster::block_on(oom.pop()),
+        ];
+        if let Some(e) = errors.into_iter().flatten().next() {
+            return Err(GpuError::Wgpu(e.to_string()));
+        }
+        self.take_uncaptured()?;
+        Ok(value)
+    }
+
+    fn take_uncaptured(&self) -> Result<(), GpuError> {
+        let message = match self.uncaptured.lock() {
+            Ok(mut slot) => slot.take(),
+            Err(_) => Some("a previous GPU error handler panicked".to_string()),
+        };
+        message.map_or(Ok(()), |m| Err(GpuError::Wgpu(m)))
+    }
+
+    /// A buffer holding `bytes` padded with zeros to a multiple of `align` bytes (at least `align`).
+    pub(super) fn buffer_with(&self, bytes: &[u8], align: usize, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+        let len = bytes.len().div_ceil(align).max(1) * align;
+        let mut padded = Vec::with_capacity(len);
+        padded.extend_from_slice(bytes);
+        padded.resize(len, 0);
+        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: None,
+            contents: &padded,
+            usage,
+        })
+    }
+
+    /// Waits for the queue, maps `buffer` (created with `MAP_READ`) and copies its contents out.
+    pub(super) fn read_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+        let (tx, rx) = mpsc::channel();
+        buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+            // The receiver outlives the poll below; a failed send only means we already gave up.
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let bytes = buffer.get_mapped_range(..).map_err(|e| GpuError::Readback(e.to_string()))?.to_vec();
+        buffer.unmap();
+        self.take_uncaptured()?;
+        Ok(bytes)
+    }
+}

@@ -1,0 +1,340 @@
+//! Drawing a prepared scene with the CPU reference: the vertex stage by the interpreter at every
+//! vertex, the rasterizer, and the fragment stage by the interpreter over batches of fragments,
+//! with the lights' programs run at each fragment and the rasterizer's analytic derivatives as
+//! the seeds.
+
+use glam::Vec3;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
+use patina_compiler::split::StageKind;
+
+use super::frame::{Frame, VertexGeometry, uniform_value};
+use super::program::{SurfaceProgram, set_spaces};
+use super::{Object, Prepared, RenderError};
+use crate::image::Image;
+use crate::raster::{Blend, DrawOptions, Fragments, Framebuffer, Varyings, draw};
+
+/// Renders every object on the CPU into an image of `width × height`.
+pub fn render(prepared: &Prepared, width: u32, height: u32) -> Result<Image, RenderError> {
+    let mut fb = Framebuffer::new(width, height, prepared.background);
+    for object in &prepared.objects {
+        draw_object(&mut fb, prepared, object)?;
+    }
+    Ok(Image { width, height, pixels: fb.color })
+}
+
+/// A varying's source, as the WGSL backend's entry point names it.
+enum Carried {
+    Global(String),
+    Param(String),
+    Transfer(String),
+}
+
+fn draw_object(fb: &mut Framebuffer, prepared: &Prepared, object: &Object) -> Result<(), RenderError> {
+    let surface = &object.surface;
+    let frame = &object.frame;
+    let stanford = surface.stages.fragment.stanford;
+    let geometry = frame.geometry(&object.mesh);
+    let count = geometry.len();
+    let interface = &surface.gpu.interface;
+
+    // The vertex stage.
+    let mut vertex = Evaluator::<f32>::new(&surface.vertex);
+    set_uniforms(&mut vertex, &surface.vertex, surface, prepared, frame, StageKind::Vertex)?;
+    let mut columns: Vec<(String, Vec<f64>)> = Vec::new();
+    for (_, slot) in surface.vertex.slots() {
+        if slot.uniform {
+            continue;
+        }
+        if let Some(c) = object_colour(frame, &slot.name) {
+            columns.push((slot.name.clone(), (0..count).flat_map(|_| c.iter().copied()).collect()));
+        } else if let Some(first) = geometry.first().and_then(|g| g.global(&slot.name, stanford)) {
+            let width = first.len();
+            let col: Vec<f64> = geometry
+                .iter()
+                .flat_map(|g| g.global(&slot.name, stanford).unwrap_or(vec![0.0; width]))
+                .map(f64::from)
+                .collect();
+            columns.push((slot.name.clone(), col));
+        } else if object.param(&slot.name).is_some() {
+            let col = (0..count).flat_map(|i| object.vertex_param(&slot.name, i, slot.width)).collect();
+            columns.push((slot.name.clone(), col));
+        }
+    }
+    let transfers: Vec<String> = surface
+        .stages
+        .transfers
+        .iter()
+        .filter(|t| t.from == StageKind::Vertex && t.to_fragment)
+        .map(|t| t.name.to_string())
+        .collect();
+    let inputs: Vec<(&str, &[f64])> = columns.iter().map(|(n, c)| (n.as_str(), c.as_slice())).collect();
+    let refs: Vec<&str> = transfers.iter().map(String::as_str).collect();
+    let outputs =
+        vertex.eval_points(count, &inputs, &refs).map_err(|e| RenderError::Compile(e.to_string()))?;
+
+    // The varyings, in the interface's order and layout.
+    let mut carried = Vec::new();
+    let mut components = 0;
+    for v in &interface.varyings {
+        let what = if transfers.contains(&v.name) {
+            Carried::Transfer(v.name.clone())
+        } else {
+            let name = v.name.trim_start_matches("in_").to_string();
+            if object_colour(frame, &name).is_some()
+                || geometry.first().and_then(|g| g.global(&name, stanford)).is_some()
+            {
+                Carried::Global(name)
+            } else {
+                Carried::Param(name)
+            }
+        };
+        carried.push((what, components, v.components as usize, v.flat));
+        components += v.components as usize;
+    }
+    let mut data = vec![0f32; components * count];
+    let mut flat = vec![false; components];
+    for (what, offset, width, is_flat) in &carried {
+        for c in 0..*width {
+            flat[offset + c] = *is_flat;
+        }
+        for i in 0..count {
+            let values: Vec<f32> = match what {
+                Carried::Global(name) => match object_colour(frame, name) {
+                    Some(c) => c.iter().map(|x| *x as f32).collect(),
+                    None => geometry[i].global(name, stanford).unwrap_or_default(),
+                },
+                Carried::Param(name) => {
+                    object.vertex_param(name, i, *width).iter().map(|x| *x as f32).collect()
+                }
+                Carried::Transfer(name) => {
+                    let k = transfers.iter().position(|t| t == name).unwrap_or(0);
+                    outputs[k][i * width..(i + 1) * width].iter().map(|x| *x as f32).collect()
+                }
+            };
+            for c in 0..*width {
+                data[i * components + offset + c] = values.get(c).copied().unwrap_or(0.0);
+            }
+        }
+    }
+    let clip: Vec<[f32; 4]> = geometry
+        .iter()
+        .map(|g: &VertexGeometry| (frame.camera_to_clip * g.p.extend(1.0)).to_array())
+        .collect();
+
+    // The fragment stage.
+    let mut fragment = Evaluator::<f32>::new(&surface.fragment);
+    set_uniforms(&mut fragment, &surface.fragment, surface, prepared, frame, StageKind::Fragment)?;
+    let mut lights: Vec<Evaluator<f32>> = prepared
+        .lights
+        .iter()
+        .map(|l| {
+            let mut e = Evaluator::<f32>::new(&l.cpu);
+            set_spaces(&mut e, &l.cpu, &frame.light_spaces);
+            for (name, value) in &l.values {
+                let _ = e.set(name, value);
+            }
+            e
+        })
+        .collect();
+    let output = interface.output.clone();
+    let varyings = Varyings { components, data: &data, flat: &flat };
+    let options = DrawOptions { blend: Blend::PremultipliedOver, depth_write: true, batch: 128 };
+    let shade = |frags: &Fragments, colors: &mut [[f32; 4]]| -> Result<(), RenderError> {
+        shade_batch(frags, colors, &carried, &mut fragment, &mut lights, prepared, surface, frame, &output)
+    };
+    draw(fb, &clip, &object.mesh.indices, &varyings, &options, shade).map_err(|e| match e {
+        crate::raster::DrawError::Shade(e) => e,
+        other => RenderError::Compile(other.to_string()),
+    })?;
+    Ok(())
+}
+
+/// Uniform inputs of a stage program: every uniform slot the interface or the host knows.
+fn set_uniforms(
+    eval: &mut Evaluator<f32>,
+    program: &CpuProgram,
+    surface: &SurfaceProgram,
+    prepared: &Prepared,
+    frame: &Frame,
+    _stage: StageKind,
+) -> Result<(), RenderError> {
+    set_spaces(eval, program, &frame.spaces);
+    for (name, value) in &surface.uniforms {
+        if program.slot(name).is_some_and(|id| program.slots().any(|(i, s)| i == id && s.uniform)) {
+            let _ = eval.set(name, value);
+        }
+    }
+    for name in ["Cs", "Os", "time", "dtime", "E"] {
+        if program.slot(name).is_some() {
+            let source =
+                patina_compiler::backend::wgsl::interface::UniformSource::Global { name: name.into() };
+            if let Ok(v) = uniform_value(&source, surface, &prepared.lights, frame) {
+                // Cs and Os are per-point inputs in RenderMan: a column of the object's colour
+                // is given at evaluation; here only uniform slots can be set.
+                let _ = eval.set(name, &v);
+            }
+        }
+    }
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn shade_batch(
+    frags: &Fragments,
+    colors: &mut [[f32; 4]],
+    carried: &[(Carried, usize, usize, bool)],
+    fragment: &mut Evaluator<f32>,
+    lights: &mut [Evaluator<f32>],
+    prepared: &Prepared,
+    surface: &SurfaceProgram,
+    frame: &Frame,
+    output: &str,
+) -> Result<(), RenderError> {
+    let n = frags.count;
+    let stanford = surface.stages.fragment.stanford;
+    let program = &surface.fragment;
+    // Columns by slot name, point-major as the interpreter takes them.
+    let mut columns: Vec<(String, Vec<f64>)> = Vec::new();
+    // Component-major (the rasterizer's) to point-major (the interpreter's).
+    let column = |offset: usize, width: usize, source: fn(&Fragments, usize) -> &[f32]| -> Vec<f64> {
+        let mut col = vec![0f64; n * width];
+        for c in 0..width {
+            let values = source(frags, offset + c);
+            for k in 0..n {
+                col[k * width + c] = f64::from(values[k]);
+            }
+        }
+        col
+    };
+    for (what, offset, width, _) in carried {
+        let name = match what {
+            Carried::Global(name) | Carried::Param(name) | Carried::Transfer(name) => name.clone(),
+        };
+        columns.push((name.clone(), column(*offset, *width, Fragments::values_of)));
+        if !matches!(what, Carried::Transfer(_)) {
+            // The derivative seeds: the rasterizer's analytic screen derivatives (seeds of a
+            // float4 P are its xyz).
+            let seed_width = if stanford && name == "P" { 3 } else { *width };
+            columns.push((format!("dx({name})"), column(*offset, seed_width, Fragments::ddx_of)));
+            columns.push((format!("dy({name})"), column(*offset, seed_width, Fragments::ddy_of)));
+        }
+    }
+    for name in ["Cs", "Os"] {
+        if let Some(c) = object_colour(frame, name)
+            && !columns.iter().any(|(n, _)| n == name)
+        {
+            columns.push((name.into(), (0..n).flat_map(|_| c.iter().copied()).collect()));
+        }
+    }
+    let get = |columns: &[(String, Vec<f64>)], name: &str| {
+        columns.iter().find(|(n, _)| n == name).map(|(_, c)| c.clone())
+    };
+    if !stanford {
+        // Ng from the screen derivatives of P, on the side of N; du, dv as |d/dx| + |d/dy|.
+        if let (Some(dx), Some(dy), Some(nn)) =
+            (get(&columns, "dx(P)"), get(&columns, "dy(P)"), get(&columns, "N"))
+        {
+            let mut ng = vec![0f64; n * 3];
+            for k in 0..n {
+                let v = |c: &[f64]| Vec3::new(c[k * 3] as f32, c[k * 3 + 1] as f32, c[k * 3 + 2] as f32);
+                let c = v(&dy).cross(v(&dx));
+                let c = c / c.length();
+                let c = if c.dot(v(&nn)) >= 0.0 { c } else { -c };
+                ng[k * 3..k * 3 + 3].copy_from_slice(&[f64::from(c.x), f64::from(c.y), f64::from(c.z)]);
+            }
+            columns.push(("Ng".into(), ng));
+        }
+        for (d, param) in [("du", "u"), ("dv", "v")] {
+            if let (Some(dx), Some(dy)) =
+                (get(&columns, &format!("dx({param})")), get(&columns, &format!("dy({param})")))
+            {
+                let col = (0..n).map(|k| f64::from((dx[k] as f32).abs() + (dy[k] as f32).abs())).collect();
+                columns.push((d.into(), col));
+            }
+        }
+    }
+    // The lights, at the surface point.
+    let p = get(&columns, "P").unwrap_or_else(|| vec![0.0; n * if stanford { 4 } else { 3 }]);
+    let p3: Vec<f64> = if stanford { (0..n).flat_map(|k| p[k * 4..k * 4 + 3].to_vec()).collect() } else { p };
+    let nn = get(&columns, "N").unwrap_or_else(|| vec![0.0; n * 3]);
+    let e = get(&columns, "E");
+    for (k, light) in lights.iter_mut().enumerate() {
+        let lp = &prepared.lights[k].cpu;
+        let inputs: Vec<(&str, &[f64])> = [("Ps", &p3), ("P", &p3), ("N", &nn)]
+            .into_iter()
+            .filter(|(name, _)| {
+                lp.slot(name).is_some_and(|id| lp.slots().any(|(i, s)| i == id && !s.uniform))
+            })
+            .map(|(name, v)| (name, v.as_slice()))
+            .collect();
+        let outs =
+            light.eval_points(n, &inputs, &["L", "Cl"]).map_err(|e| RenderError::Compile(e.to_string()))?;
+        let (mut l, cl) = (outs[0].clone(), outs[1].clone());
+        for x in &mut l {
+            *x = -*x;
+        }
+        if stanford {
+            let mut h = vec![0f64; n * 3];
+            for i in 0..n {
+                let lv = Vec3::new(l[i * 3] as f32, l[i * 3 + 1] as f32, l[i * 3 + 2] as f32);
+                let lv = lv / lv.length();
+                l[i * 3..i * 3 + 3].copy_from_slice(&[f64::from(lv.x), f64::from(lv.y), f64::from(lv.z)]);
+                if let Some(e) = &e {
+                    let ev = Vec3::new(e[i * 3] as f32, e[i * 3 + 1] as f32, e[i * 3 + 2] as f32);
+                    let hv = (lv + ev) / (lv + ev).length();
+                    h[i * 3..i * 3 + 3].copy_from_slice(&[f64::from(hv.x), f64::from(hv.y), f64::from(hv.z)]);
+                }
+            }
+            columns.push((format!("H[{k}]"), h));
+            let cl4: Vec<f64> = (0..n).flat_map(|i| [cl[i * 3], cl[i * 3 + 1], cl[i * 3 + 2], 1.0]).collect();
+            columns.push((format!("Cl[{k}]"), cl4));
+        } else {
+            columns.push((format!("Cl[{k}]"), cl));
+        }
+        columns.push((format!("L[{k}]"), l));
+    }
+    let inputs: Vec<(&str, &[f64])> = columns
+        .iter()
+        .filter(|(name, _)| {
+            program.slot(name).is_some_and(|id| program.slots().any(|(i, s)| i == id && !s.uniform))
+        })
+        .map(|(name, c)| (name.as_str(), c.as_slice()))
+        .collect();
+    let wanted: Vec<&str> = match output {
+        "result" => vec!["result"],
+        "Ci, Oi" => vec!["Ci", "Oi"],
+        _ => vec!["Ci"],
+    };
+    let outs = fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
+    for (k, color) in colors.iter_mut().enumerate() {
+        *color = match output {
+            "result" => {
+                let r = &outs[0][k * 4..k * 4 + 4];
+                [r[0] as f32, r[1] as f32, r[2] as f32, r[3] as f32]
+            }
+            _ => {
+                let ci = &outs[0][k * 3..k * 3 + 3];
+                let alpha = match outs.get(1) {
+                    // The mean of Oi, as the GPU computes it: a dot product with 1/3.
+                    Some(oi) => {
+                        let third = 1.0f32 / 3.0;
+                        oi[k * 3] as f32 * third + oi[k * 3 + 1] as f32 * third + oi[k * 3 + 2] as f32 * third
+                    }
+                    None => 1.0,
+                };
+                [ci[0] as f32, ci[1] as f32, ci[2] as f32, alpha]
+            }
+        };
+    }
+    Ok(())
+}
+
+/// The object's `Cs` or `Os` (per-point inputs of the interpreter, uniforms on the GPU).
+fn object_colour(frame: &Frame, name: &str) -> Option<Vec<f64>> {
+    let c = match name {
+        "Cs" => frame.color,
+        "Os" => frame.opacity,
+        _ => return None,
+    };
+    Some(c.iter().map(|x| f64::from(*x)).collect())
+}

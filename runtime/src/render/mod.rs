@@ -1,0 +1,173 @@
+//! Rendering a scene: its shaders compiled for both backends ([`prepare`]), then drawn on the GPU
+//! or by the CPU reference ([`render`]). Both draw the same triangles with the same inputs, so
+//! their images can be compared pixel by pixel.
+
+mod cpu;
+mod frame;
+mod gpu;
+mod program;
+
+use glam::Mat4;
+use patina_compiler::syntax::ast::ShaderKind;
+
+use crate::gpu::Gpu;
+use crate::image::Image;
+use crate::mesh::Mesh;
+use crate::scene::Scene;
+pub use frame::Frame;
+pub use program::{LightProgram, SurfaceProgram};
+
+/// Why a scene could not be rendered, as one line (or a shader's diagnostics).
+#[derive(Clone, Debug, PartialEq)]
+pub enum RenderError {
+    /// A missing file, an unknown shader or parameter.
+    Input(String),
+    /// A shader's diagnostics, rendered.
+    Shader(String),
+    /// The compiler could not build the program (an internal error or an unsupported feature).
+    Compile(String),
+    /// The GPU failed.
+    Gpu(String),
+}
+
+impl std::fmt::Display for RenderError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RenderError::Input(m) | RenderError::Compile(m) | RenderError::Shader(m) => {
+                f.write_str(m.trim_end())
+            }
+            RenderError::Gpu(m) => write!(f, "GPU: {}", m.trim_end()),
+        }
+    }
+}
+
+impl std::error::Error for RenderError {}
+
+/// Which renderer draws.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// wgpu.
+    Gpu,
+    /// The CPU reference.
+    Cpu,
+}
+
+/// One object, compiled.
+pub struct Object {
+    /// Its surface program.
+    pub surface: SurfaceProgram,
+    /// Its mesh, in object space.
+    pub mesh: Mesh,
+    /// Its transformations.
+    pub frame: Frame,
+}
+
+impl Object {
+    /// A surface parameter's value (the scene's, or the default the host computed).
+    pub fn param(&self, name: &str) -> Option<Vec<f64>> {
+        self.surface.uniforms.iter().find(|(n, _)| n == name).map(|(_, v)| v.clone())
+    }
+
+    /// A vertex-rate parameter's value at vertex `i`, `components` wide: the scene's value, or for
+    /// a parameter named `uv` or `st` that the scene leaves unset, the mesh's surface parameters
+    /// as (u, v, 0, 1); otherwise its default.
+    pub fn vertex_param(&self, name: &str, i: usize, components: usize) -> Vec<f64> {
+        let set_by_scene = self.surface.loaded.params.iter().any(|(n, _)| n == name);
+        let value = match (name, set_by_scene, self.mesh.uvs.get(i)) {
+            ("uv" | "st", false, Some(uv)) => vec![f64::from(uv[0]), f64::from(uv[1]), 0.0, 1.0],
+            _ => self.param(name).unwrap_or_default(),
+        };
+        (0..components).map(|c| value.get(c).copied().unwrap_or(0.0)).collect()
+    }
+}
+
+/// A scene compiled for rendering at one image size.
+pub struct Prepared {
+    /// The bound lights.
+    pub lights: Vec<LightProgram>,
+    /// The objects.
+    pub objects: Vec<Object>,
+    /// The clear colour (premultiplied).
+    pub background: [f32; 4],
+    /// Render size before downsampling.
+    pub width: u32,
+    /// See `width`.
+    pub height: u32,
+    /// Samples per pixel along each axis.
+    pub supersample: u32,
+}
+
+/// Compiles every shader of `scene` and computes its parameters.
+pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
+    let camera = scene.camera();
+    let n = scene.output.supersample.max(1);
+    let (width, height) = (scene.output.width * n, scene.output.height * n);
+    let world_to_camera = camera.world_to_camera();
+    let camera_to_clip = camera.camera_to_clip(scene.aspect());
+    let world_spaces = program::spaces(world_to_camera, Mat4::IDENTITY, &camera, width, height);
+    let light_spaces = program::light_spaces(&world_spaces);
+    let mut lights = Vec::new();
+    for light in &scene.lights {
+        let loaded = program::load(&light.shader, ShaderKind::Light, world_to_camera)?;
+        lights.push(program::light_program(loaded, &light_spaces)?);
+    }
+    let mut objects = Vec::new();
+    for (i, o) in scene.objects.iter().enumerate() {
+        let object_to_world = scene.object_transform(i);
+        let spaces = program::spaces(world_to_camera, object_to_world, &camera, width, height);
+        let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera)?;
+        let surface = program::surface_program(loaded, &lights, &spaces)?;
+        let mesh = o
+            .build_mesh()
+            .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;
+        let object_to_camera = world_to_camera * object_to_world;
+        let frame = Frame {
+            object_to_camera,
+            normal_to_camera: object_to_camera.inverse().transpose(),
+            camera_to_clip,
+            spaces,
+            light_spaces: light_spaces.clone(),
+            color: o.color,
+            opacity: o.opacity,
+        };
+        objects.push(Object { surface, mesh, frame });
+    }
+    let [r, g, b, a] = scene.output.background;
+    Ok(Prepared { lights, objects, background: [r * a, g * a, b * a, a], width, height, supersample: n })
+}
+
+/// Renders a prepared scene on a backend (the GPU one needs `gpu`), downsampled to the scene's
+/// output size.
+pub fn render(prepared: &Prepared, backend: Backend, gpu: Option<&Gpu>) -> Result<Image, RenderError> {
+    let image = match (backend, gpu) {
+        (Backend::Gpu, Some(gpu)) => gpu::render(gpu, prepared, prepared.width, prepared.height)?,
+        (Backend::Gpu, None) => return Err(RenderError::Gpu("no GPU adapter".into())),
+        (Backend::Cpu, _) => cpu::render(prepared, prepared.width, prepared.height)?,
+    };
+    Ok(downsample(&image, prepared.supersample))
+}
+
+/// The mean of each `n × n` block of samples.
+fn downsample(image: &Image, n: u32) -> Image {
+    if n <= 1 {
+        return image.clone();
+    }
+    let (w, h) = (image.width / n, image.height / n);
+    let mut pixels = vec![[0f32; 4]; (w * h) as usize];
+    let scale = 1.0 / (n * n) as f32;
+    for y in 0..h {
+        for x in 0..w {
+            let mut sum = [0f32; 4];
+            for j in 0..n {
+                for i in 0..n {
+                    let p = image.pixels[((y * n + j) * image.width + x * n + i) as usize];
+                    for c in 0..4 {
+                        sum[c] += p[c];
+                    }
+                }
+            }
+            pixels[(y * w + x) as usize] = sum.map(|s| s * scale);
+        }
+    }
+    Image { width: w, height: h, pixels }
+}

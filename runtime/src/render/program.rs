@@ -1,0 +1,261 @@
+//! A scene's shaders compiled once for rendering: the surface of each object split into its
+//! stages and built for both backends, the bound lights, and the values of every parameter (as
+//! the host program computes them: the scene's value or the default).
+
+use std::path::Path;
+
+use glam::{Mat4, Vec3, Vec4};
+use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, SlotKind};
+use patina_compiler::backend::wgsl::{self, BoundLight, GpuProgram};
+use patina_compiler::ir::Shader;
+use patina_compiler::ir::types::{Base, Type};
+use patina_compiler::split::{self, Stages};
+use patina_compiler::syntax::ast::ShaderKind;
+use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
+
+use super::RenderError;
+use crate::scene::{ParamValue, ShaderRef};
+
+/// A checked shader and the source it came from (kept for rendering diagnostics).
+pub struct LoadedShader {
+    /// The shader, differentiated.
+    pub shader: Shader,
+    /// Its string parameters' values from the scene.
+    pub strings: Vec<(String, String)>,
+    /// Its numeric parameters from the scene, in "current" (camera) space.
+    pub params: Vec<(String, Vec<f64>)>,
+}
+
+/// Reads, checks and differentiates the shader a scene refers to.
+pub fn load(
+    shader: &ShaderRef,
+    kind: ShaderKind,
+    world_to_camera: Mat4,
+) -> Result<LoadedShader, RenderError> {
+    let path = shader.path.as_path();
+    let shown = path.display().to_string();
+    let text = match read_source_file(path) {
+        Ok(Some(text)) => text,
+        Ok(None) => return Err(RenderError::Input(format!("cannot read {shown}: no such file"))),
+        Err(reason) => return Err(RenderError::Input(format!("cannot read {shown}: {reason}"))),
+    };
+    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let checked = patina_compiler::check_source(&shown, &text, &FsLoader { include_dirs: vec![dir] });
+    if checked.has_errors() {
+        let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
+        let text = patina_compiler::diag::render_text(&checked.sources, &list);
+        return Err(RenderError::Shader(text));
+    }
+    let found = checked.program.shaders.iter().filter(|s| s.kind == kind).find(|s| match &shader.name {
+        Some(name) => s.name == name.as_str(),
+        None => true,
+    });
+    let Some(found) = found else {
+        let what = match &shader.name {
+            Some(n) => format!("no {} shader `{n}`", kind_name(kind)),
+            None => format!("no {} shader", kind_name(kind)),
+        };
+        return Err(RenderError::Input(format!("{shown}: {what}")));
+    };
+    let mut shader_ir = found.clone();
+    patina_compiler::opt::derivs::differentiate(&mut shader_ir);
+    let mut strings = Vec::new();
+    let mut params = Vec::new();
+    for (name, value) in &shader.params {
+        let Some(local) =
+            shader_ir.params.iter().map(|p| shader_ir.local(*p)).find(|l| l.name == name.as_str())
+        else {
+            return Err(RenderError::Input(format!(
+                "{shown}: shader `{}` has no parameter `{name}`",
+                shader_ir.name
+            )));
+        };
+        match value {
+            ParamValue::String(s) => strings.push((name.clone(), s.clone())),
+            ParamValue::Bool(b) => params.push((name.clone(), vec![f64::from(u8::from(*b))])),
+            other => {
+                let numbers = other.as_numbers().unwrap_or(&[]).to_vec();
+                params.push((name.clone(), to_current(local.ty, numbers, world_to_camera)));
+            }
+        }
+    }
+    Ok(LoadedShader { shader: shader_ir, strings, params })
+}
+
+fn kind_name(kind: ShaderKind) -> &'static str {
+    match kind {
+        ShaderKind::Surface => "surface",
+        ShaderKind::Light => "light",
+        ShaderKind::Displacement => "displacement",
+        ShaderKind::Volume => "volume",
+        ShaderKind::Imager => "imager",
+    }
+}
+
+/// Scene values of geometric types are in world space; shaders see them in camera space.
+fn to_current(ty: Type, v: Vec<f64>, world_to_camera: Mat4) -> Vec<f64> {
+    if ty.is_array() || v.len() != 3 {
+        return v;
+    }
+    let x = Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
+    let r = match ty.base {
+        Base::Point => world_to_camera.transform_point3(x),
+        Base::Vector => world_to_camera.transform_vector3(x),
+        Base::Normal => world_to_camera.inverse().transpose().transform_vector3(x),
+        _ => return v,
+    };
+    vec![f64::from(r.x), f64::from(r.y), f64::from(r.z)]
+}
+
+/// A light bound to the scene, ready for both backends.
+pub struct LightProgram {
+    /// The light shader.
+    pub loaded: LoadedShader,
+    /// The interpreter's program for it.
+    pub cpu: CpuProgram,
+    /// Its parameter values after defaults, by name.
+    pub values: Vec<(String, Vec<f64>)>,
+}
+
+/// An object's surface, ready for both backends.
+pub struct SurfaceProgram {
+    /// The surface shader (differentiated, whole).
+    pub loaded: LoadedShader,
+    /// Its stages.
+    pub stages: Stages,
+    /// The GPU module and its interface.
+    pub gpu: GpuProgram,
+    /// The interpreter's programs for the vertex and fragment stages.
+    pub vertex: CpuProgram,
+    /// See `vertex`.
+    pub fragment: CpuProgram,
+    /// The host program's results: every parameter's value and every host transfer, by name.
+    pub uniforms: Vec<(String, Vec<f64>)>,
+}
+
+/// Compiles a light and computes its parameter values.
+pub fn light_program(loaded: LoadedShader, spaces: &[(String, Mat4)]) -> Result<LightProgram, RenderError> {
+    let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
+    let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
+    let values = evaluate_params(&cpu, &loaded, spaces, &[])?;
+    Ok(LightProgram { loaded, cpu, values })
+}
+
+/// The interpreter's bindings for the lights.
+pub fn light_bindings(lights: &[LightProgram]) -> Vec<LightBinding> {
+    lights
+        .iter()
+        .map(|l| LightBinding { ambient: wgsl::is_ambient(&l.loaded.shader), categories: Vec::new() })
+        .collect()
+}
+
+/// Splits and compiles a surface for both backends and runs its host program.
+pub fn surface_program(
+    loaded: LoadedShader,
+    lights: &[LightProgram],
+    spaces: &[(String, Mat4)],
+) -> Result<SurfaceProgram, RenderError> {
+    let stages = split::split(&loaded.shader).map_err(|d| RenderError::Compile(d.message))?;
+    let bound: Vec<BoundLight> = lights
+        .iter()
+        .map(|l| BoundLight {
+            shader: &l.loaded.shader,
+            strings: l.loaded.strings.clone(),
+            categories: Vec::new(),
+        })
+        .collect();
+    let gpu = wgsl::compile(&stages, &bound, &loaded.strings).map_err(|d| RenderError::Compile(d.message))?;
+    let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };
+    let compile = |s: &Shader| CpuProgram::compile(s, &binding).map_err(|d| RenderError::Compile(d.message));
+    let host = compile(&stages.host)?;
+    let vertex = compile(&stages.vertex)?;
+    let fragment = compile(&stages.fragment)?;
+    let host_outputs: Vec<String> = stages
+        .transfers
+        .iter()
+        .filter(|t| t.from == split::StageKind::Host)
+        .map(|t| t.name.to_string())
+        .collect();
+    let uniforms = evaluate_params(&host, &loaded, spaces, &host_outputs)?;
+    Ok(SurfaceProgram { loaded, stages, gpu, vertex, fragment, uniforms })
+}
+
+/// Runs a program once with the scene's parameter values and reads back every parameter (the
+/// scene's value or its default) and the named extra outputs.
+fn evaluate_params(
+    program: &CpuProgram,
+    loaded: &LoadedShader,
+    spaces: &[(String, Mat4)],
+    extra: &[String],
+) -> Result<Vec<(String, Vec<f64>)>, RenderError> {
+    let mut eval = Evaluator::<f32>::new(program);
+    set_spaces(&mut eval, program, spaces);
+    for (name, value) in &loaded.params {
+        eval.set(name, value).map_err(|e| RenderError::Input(format!("parameter `{name}`: {e}")))?;
+    }
+    let mut names: Vec<String> = program
+        .slots()
+        .filter(|(_, s)| matches!(s.kind, SlotKind::Param { .. }))
+        .map(|(_, s)| s.name)
+        .collect();
+    names.extend(extra.iter().cloned());
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let values = eval.eval_points(1, &[], &refs).map_err(|e| RenderError::Compile(e.to_string()))?;
+    Ok(names.into_iter().zip(values).collect())
+}
+
+/// Fills every `space:NAME` slot a program has from the scene's spaces.
+pub fn set_spaces<F: patina_compiler::backend::cpu::scalar::Real>(
+    eval: &mut Evaluator<'_, F>,
+    program: &CpuProgram,
+    spaces: &[(String, Mat4)],
+) {
+    let wanted: Vec<String> = program
+        .slots()
+        .filter(|(_, s)| s.kind == SlotKind::Space)
+        .map(|(_, s)| s.name.trim_start_matches("space:").to_string())
+        .collect();
+    for name in wanted {
+        let m = spaces.iter().find(|(n, _)| *n == name).map_or(Mat4::IDENTITY, |(_, m)| *m);
+        let values: Vec<f64> = m.to_cols_array().iter().map(|x| f64::from(*x)).collect();
+        // A space the scene cannot name keeps the identity; `set` only fails on unknown names.
+        let _ = eval.set(&format!("space:{name}"), &values);
+    }
+}
+
+/// The named spaces of an object, as matrices from "current" (camera) space to each.
+pub fn spaces(
+    world_to_camera: Mat4,
+    object_to_world: Mat4,
+    camera: &crate::camera::Camera,
+    width: u32,
+    height: u32,
+) -> Vec<(String, Mat4)> {
+    let camera_to_world = world_to_camera.inverse();
+    let camera_to_object = object_to_world.inverse() * camera_to_world;
+    let aspect = width as f32 / height.max(1) as f32;
+    vec![
+        ("world".into(), camera_to_world),
+        ("object".into(), camera_to_object),
+        ("shader".into(), camera_to_object),
+        ("camera".into(), Mat4::IDENTITY),
+        ("current".into(), Mat4::IDENTITY),
+        ("screen".into(), camera.camera_to_screen()),
+        ("NDC".into(), camera.camera_to_ndc(aspect)),
+        ("raster".into(), camera.camera_to_raster(width, height)),
+    ]
+}
+
+/// The spaces of a light: its "shader" space is world space (lights have no transformation).
+pub fn light_spaces(surface_spaces: &[(String, Mat4)]) -> Vec<(String, Mat4)> {
+    let world = surface_spaces.iter().find(|(n, _)| n == "world").map_or(Mat4::IDENTITY, |(_, m)| *m);
+    surface_spaces
+        .iter()
+        .map(|(n, m)| if n == "shader" || n == "object" { (n.clone(), world) } else { (n.clone(), *m) })
+        .collect()
+}
+
+/// `m * (v, w)`, the first three components.
+pub fn apply(m: Mat4, v: Vec3, w: f32) -> Vec3 {
+    (m * Vec4::new(v.x, v.y, v.z, w)).truncate()
+}

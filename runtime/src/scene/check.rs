@@ -1,0 +1,207 @@
+//! From the file as written to a [`Scene`]: range and consistency checks, each reported at its
+//! field, and paths resolved against the scene's directory.
+
+use super::error::{Field, Locator, SceneError, field};
+use super::schema::{RawCamera, RawObject, RawOutput, RawQuality, RawScene, RawShader};
+use super::value::{RawMesh, TransformStep};
+use super::{DEFAULT_DETAIL, Light, MeshSource, Object, Output, Quality, Scene, ShaderRef};
+use crate::camera::Camera;
+use crate::mesh::MAX_DETAIL;
+use glam::Vec3;
+use std::path::Path;
+
+pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> Result<Scene, SceneError> {
+    let output = output(&raw.output, loc)?;
+    let camera = camera(&raw.camera, loc)?;
+    let lights = (raw.light.iter().enumerate())
+        .map(|(i, light)| {
+            let at = field(&["light"]).index(i);
+            Ok(Light { shader: shader(light, &at, loc, base)?, line: line(loc, &at) })
+        })
+        .collect::<Result<Vec<_>, SceneError>>()?;
+    let objects = (raw.object.iter().enumerate())
+        .map(|(i, object)| self::object(object, &field(&["object"]).index(i), loc, base))
+        .collect::<Result<Vec<_>, SceneError>>()?;
+    let quality = raw.quality.as_ref().map(|q| quality(q, objects.len(), loc)).transpose()?;
+    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, quality })
+}
+
+fn line(loc: &Locator, at: &Field) -> usize {
+    loc.span_of(at).map_or(0, |s| loc.position(s.start).0)
+}
+
+/// `value` as a `u32` in `range`, or an error at `at`.
+fn in_range(
+    value: i64,
+    range: std::ops::RangeInclusive<u32>,
+    at: &Field,
+    loc: &Locator,
+) -> Result<u32, SceneError> {
+    match u32::try_from(value) {
+        Ok(v) if range.contains(&v) => Ok(v),
+        _ => {
+            Err(loc
+                .invalid(at, format!("must be between {} and {}, found {value}", range.start(), range.end())))
+        }
+    }
+}
+
+fn finite(values: &[f32; 3], at: &Field, loc: &Locator) -> Result<Vec3, SceneError> {
+    if values.iter().all(|x| x.is_finite()) {
+        Ok(Vec3::from(*values))
+    } else {
+        Err(loc.invalid(at, "values must be finite numbers"))
+    }
+}
+
+fn output(raw: &RawOutput, loc: &Locator) -> Result<Output, SceneError> {
+    let at = |name| field(&["output", name]);
+    let width = in_range(raw.width, 1..=16384, &at("width"), loc)?;
+    let height = in_range(raw.height, 1..=16384, &at("height"), loc)?;
+    let supersample = in_range(raw.supersample, 1..=16, &at("supersample"), loc)?;
+    let background = match raw.background[..] {
+        [r, g, b] => [r, g, b, 1.0],
+        [r, g, b, a] => [r, g, b, a],
+        _ => {
+            let n = raw.background.len();
+            return Err(
+                loc.invalid(&at("background"), format!("expected 3 or 4 numbers (RGB or RGBA), found {n}"))
+            );
+        }
+    };
+    if background.iter().any(|x| !x.is_finite()) {
+        return Err(loc.invalid(&at("background"), "values must be finite numbers"));
+    }
+    Ok(Output { width, height, background, supersample })
+}
+
+fn camera(raw: &RawCamera, loc: &Locator) -> Result<Camera, SceneError> {
+    let at = |name| field(&["camera", name]);
+    let from = finite(&raw.from, &at("from"), loc)?;
+    let to = finite(&raw.to, &at("to"), loc)?;
+    let up = finite(&raw.up, &at("up"), loc)?;
+    if !(raw.fov > 0.0 && raw.fov < 180.0) {
+        return Err(loc.invalid(
+            &at("fov"),
+            format!("must be between 0 and 180 degrees (exclusive), found {}", raw.fov),
+        ));
+    }
+    if !(raw.near > 0.0 && raw.near.is_finite()) {
+        return Err(loc.invalid(&at("near"), format!("must be greater than 0, found {}", raw.near)));
+    }
+    if !(raw.far > raw.near && raw.far.is_finite()) {
+        // Blame what was written: a large `near` against the default `far` is the near's fault.
+        return Err(if loc.is_written(&at("far")) {
+            loc.invalid(
+                &at("far"),
+                format!("must be greater than camera.near ({}), found {}", raw.near, raw.far),
+            )
+        } else {
+            let message =
+                format!("must be less than camera.far ({} by default), found {}", raw.far, raw.near);
+            loc.invalid(&at("near"), message)
+        });
+    }
+    if from == to {
+        return Err(loc.invalid(&at("to"), "must differ from camera.from (the camera would look nowhere)"));
+    }
+    if up.cross(to - from).length_squared() <= 1e-12 * up.length_squared() * (to - from).length_squared() {
+        return Err(loc.invalid(&at("up"), "must not be zero or parallel to the viewing direction"));
+    }
+    Ok(Camera { from, to, up, fov_y_degrees: raw.fov, near: raw.near, far: raw.far })
+}
+
+fn shader(raw: &RawShader, at: &Field, loc: &Locator, base: &Path) -> Result<ShaderRef, SceneError> {
+    shader_parts(&raw.shader, &raw.name, &raw.params, at, loc, base)
+}
+
+fn shader_parts(
+    path: &str,
+    name: &Option<String>,
+    params: &std::collections::BTreeMap<String, super::ParamValue>,
+    at: &Field,
+    loc: &Locator,
+    base: &Path,
+) -> Result<ShaderRef, SceneError> {
+    if path.trim().is_empty() {
+        return Err(loc.invalid(&at.key("shader"), "the shader path is empty"));
+    }
+    if name.as_deref().is_some_and(|n| n.trim().is_empty()) {
+        return Err(loc.invalid(&at.key("name"), "the shader name is empty (leave `name` out instead)"));
+    }
+    Ok(ShaderRef { path: base.join(path), name: name.clone(), params: params.clone() })
+}
+
+fn object(raw: &RawObject, at: &Field, loc: &Locator, base: &Path) -> Result<Object, SceneError> {
+    let mesh = match &raw.mesh {
+        RawMesh::Builtin(kind) => kind.clone(),
+        RawMesh::Obj(path) if path.trim().is_empty() => {
+            return Err(loc.invalid(&at.key("mesh").key("obj"), "the OBJ file path is empty"));
+        }
+        RawMesh::Obj(path) => MeshSource::Obj(base.join(path)),
+    };
+    let detail = match raw.detail {
+        Some(d) => in_range(d, 1..=MAX_DETAIL, &at.key("detail"), loc)?,
+        None => DEFAULT_DETAIL,
+    };
+    let surface = shader_parts(&raw.shader, &raw.name, &raw.params, at, loc, base)?;
+    let displacement =
+        raw.displacement.as_ref().map(|d| shader(d, &at.key("displacement"), loc, base)).transpose()?;
+    let colour = |value: Option<[f32; 3]>, name: &str| -> Result<[f32; 3], SceneError> {
+        let value = value.unwrap_or([1.0; 3]);
+        finite(&value, &at.key(name), loc)?;
+        Ok(value)
+    };
+    for (k, step) in raw.transform.iter().enumerate() {
+        transform_step(step, &at.key("transform").index(k), loc)?;
+    }
+    Ok(Object {
+        mesh,
+        detail,
+        surface,
+        displacement,
+        color: colour(raw.color, "color")?,
+        opacity: colour(raw.opacity, "opacity")?,
+        transform: raw.transform.clone(),
+        line: line(loc, at),
+    })
+}
+
+fn transform_step(step: &TransformStep, at: &Field, loc: &Locator) -> Result<(), SceneError> {
+    match step {
+        TransformStep::Translate(t) => finite(t, &at.key("translate"), loc).map(drop),
+        TransformStep::Scale(s) => finite(s, &at.key("scale"), loc).map(drop),
+        TransformStep::Rotate { angle, axis } => {
+            let at = at.key("rotate");
+            if !angle.is_finite() {
+                return Err(loc.invalid(&at.key("angle"), "must be a finite number"));
+            }
+            if finite(axis, &at.key("axis"), loc)? == Vec3::ZERO {
+                return Err(loc.invalid(&at.key("axis"), "the rotation axis must not be zero"));
+            }
+            Ok(())
+        }
+    }
+}
+
+fn quality(raw: &RawQuality, objects: usize, loc: &Locator) -> Result<Quality, SceneError> {
+    let at = |name| field(&["quality", name]);
+    if raw.param.trim().is_empty() {
+        return Err(loc.invalid(&at("param"), "the parameter name is empty"));
+    }
+    if raw.values.is_empty() {
+        return Err(loc.invalid(&at("values"), "at least one setting is needed"));
+    }
+    if raw.values.iter().chain([&raw.reference]).any(|x| !x.is_finite()) {
+        return Err(loc.invalid(&at("values"), "settings must be finite numbers"));
+    }
+    let object = match raw.object {
+        Some(i) if usize::try_from(i).is_ok_and(|i| i < objects) => Some(i as usize),
+        Some(i) => {
+            let message = format!("there is no object {i} (the scene has {objects}, numbered from 0)");
+            return Err(loc.invalid(&at("object"), message));
+        }
+        None => None,
+    };
+    Ok(Quality { param: raw.param.clone(), object, values: raw.values.clone(), reference: raw.reference })
+}

@@ -1,0 +1,101 @@
+//! The scene file exactly as written: serde's view, before semantic checks and path resolution.
+//! Integers that have a valid range are read as `i64` so that the range check, not the type,
+//! reports a negative value.
+
+use super::value::{ParamValue, RawMesh, TransformStep};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawScene {
+    #[serde(default)]
+    pub output: RawOutput,
+    pub camera: RawCamera,
+    #[serde(default)]
+    pub light: Vec<RawShader>,
+    #[serde(default)]
+    pub object: Vec<RawObject>,
+    pub quality: Option<RawQuality>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub(crate) struct RawOutput {
+    pub width: i64,
+    pub height: i64,
+    pub background: Vec<f32>,
+    pub supersample: i64,
+}
+
+impl Default for RawOutput {
+    fn default() -> Self {
+        RawOutput { width: 256, height: 256, background: vec![0.0, 0.0, 0.0, 1.0], supersample: 1 }
+    }
+}
+
+fn default_up() -> [f32; 3] {
+    [0.0, 1.0, 0.0]
+}
+
+fn default_fov() -> f32 {
+    40.0
+}
+
+fn default_near() -> f32 {
+    0.1
+}
+
+fn default_far() -> f32 {
+    100.0
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawCamera {
+    pub from: [f32; 3],
+    pub to: [f32; 3],
+    #[serde(default = "default_up")]
+    pub up: [f32; 3],
+    #[serde(default = "default_fov")]
+    pub fov: f32,
+    #[serde(default = "default_near")]
+    pub near: f32,
+    #[serde(default = "default_far")]
+    pub far: f32,
+}
+
+/// A light, or an object's displacement: a shader file, which shader in it, and parameters.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawShader {
+    pub shader: String,
+    pub name: Option<String>,
+    #[serde(default)]
+    pub params: BTreeMap<String, ParamValue>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawObject {
+    pub mesh: RawMesh,
+    pub detail: Option<i64>,
+    pub shader: String,
+    pub name: Option<String>,
+    #[serde(default)]
+    pub params: BTreeMap<String, ParamValue>,
+    pub displacement: Option<RawShader>,
+    pub color: Option<[f32; 3]>,
+    pub opacity: Option<[f32; 3]>,
+    #[serde(default)]
+    pub transform: Vec<TransformStep>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawQuality {
+    pub param: String,
+    pub object: Option<i64>,
+    pub values: Vec<f64>,
+    pub reference: f64,
+}

@@ -1,0 +1,372 @@
+//! Scene files: the fixtures under tests/scenes, and one test per class of error with the exact
+//! line, column and field of its message.
+
+use glam::{Mat4, Vec3};
+use patina_runtime::scene::{MeshSource, ParamValue, Scene, SceneErrorKind, TransformStep};
+use std::f32::consts::FRAC_PI_6;
+use std::path::{Path, PathBuf};
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes").join(name)
+}
+
+const CAMERA: &str = "[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\n";
+const OBJECT: &str = "[[object]]\nmesh = \"cube\"\nshader = \"a.sl\"\n";
+
+/// The one-line message for a bad scene text.
+fn error(text: &str) -> String {
+    Scene::parse(text, "scenes/bad.toml", "scenes").unwrap_err().to_string()
+}
+
+#[test]
+fn the_full_example_reads_every_field() {
+    let scene = Scene::load(fixture("spheres.toml")).unwrap();
+    let dir = fixture("");
+    assert_eq!((scene.output.width, scene.output.height, scene.output.supersample), (320, 240, 2));
+    assert_eq!(scene.output.background, [0.1, 0.1, 0.15, 1.0], "RGB gets an opaque alpha");
+    let camera = scene.camera();
+    assert_eq!((camera.from, camera.to, camera.up), (Vec3::new(0.0, 1.0, -5.0), Vec3::ZERO, Vec3::Y));
+    assert_eq!((camera.fov_y_degrees, camera.near, camera.far), (40.0, 0.1, 100.0));
+
+    assert_eq!(scene.lights.len(), 2);
+    let point = &scene.lights[1];
+    assert_eq!(point.shader.path, dir.join("../../../shaders/lights.sl"));
+    assert_eq!(point.shader.name.as_deref(), Some("pointlight"));
+    assert_eq!(point.shader.params["intensity"], ParamValue::Number(20.0));
+    assert_eq!(point.shader.params["from"], ParamValue::Numbers(vec![2.0, 3.0, -4.0]));
+    assert_eq!(point.line, 23);
+
+    let [plastic, wood, floor] = &scene.objects[..] else { panic!("three objects") };
+    assert_eq!((plastic.mesh.clone(), plastic.detail, plastic.line), (MeshSource::Sphere, 48, 28));
+    assert_eq!(plastic.surface.params["specularcolor"], ParamValue::Numbers(vec![1.0; 3]));
+    assert_eq!(plastic.color, [1.0, 0.5, 0.2]);
+    assert_eq!(plastic.opacity, [1.0; 3], "the default Os");
+    assert_eq!(wood.detail, patina_runtime::scene::DEFAULT_DETAIL);
+    assert_eq!(wood.color, [1.0; 3], "the default Cs");
+    assert_eq!(wood.surface.name, None);
+    assert_eq!(wood.surface.params["texturename"], ParamValue::String("wood.png".into()));
+    assert_eq!(wood.surface.params["twosided"], ParamValue::Bool(true));
+    assert_eq!(wood.surface.params["ringscale"].as_number(), Some(10.0), "integers are numbers");
+    let bumpy = wood.displacement.as_ref().unwrap();
+    assert_eq!(bumpy.path, dir.join("../../../shaders/bumpy.sl"));
+    assert_eq!(bumpy.params["Km"], ParamValue::Number(0.05));
+    assert_eq!(floor.transform.len(), 3);
+    assert_eq!(floor.transform[1], TransformStep::Rotate { angle: 90.0, axis: [1.0, 0.0, 0.0] });
+
+    let quality = scene.quality.as_ref().unwrap();
+    assert_eq!((quality.param.as_str(), quality.object), ("ringscale", Some(1)));
+    assert_eq!((quality.values.clone(), quality.reference), (vec![2.0, 4.0, 8.0, 16.0], 64.0));
+}
+
+#[test]
+fn transformations_concatenate_like_renderman() {
+    let scene = Scene::load(fixture("spheres.toml")).unwrap();
+    // translate [-1.2, 0, 0], then rotate 90° about x: the rotation acts on the object first.
+    let m = scene.object_transform(0);
+    assert!(m.transform_point3(Vec3::ZERO).abs_diff_eq(Vec3::new(-1.2, 0.0, 0.0), 1e-6));
+    assert!(m.transform_point3(Vec3::Z).abs_diff_eq(Vec3::new(-1.2, -1.0, 0.0), 1e-6), "+z turns to -y");
+    // The floor: scaled by 5, turned to face +y, lowered to y = -1.
+    let floor = scene.object_transform(2);
+    assert!(floor.transform_point3(Vec3::new(1.0, 0.0, 0.0)).abs_diff_eq(Vec3::new(5.0, -1.0, 0.0), 1e-5));
+    assert!(
+        floor.transform_vector3(Vec3::NEG_Z).normalize().abs_diff_eq(Vec3::Y, 1e-6),
+        "the plane faces up"
+    );
+    assert_eq!(scene.object_transform(99), Mat4::IDENTITY);
+}
+
+#[test]
+fn every_mesh_kind_builds() {
+    for kind in
+        [MeshSource::Sphere, MeshSource::Torus, MeshSource::Plane, MeshSource::Cube, MeshSource::Teapot]
+    {
+        let mesh = kind.build(16).unwrap();
+        mesh.validate().unwrap();
+        assert!(mesh.triangle_count() > 0, "{kind:?}");
+    }
+    let scene = Scene::load(fixture("obj.toml")).unwrap();
+    let object = &scene.objects[0];
+    assert_eq!(object.mesh, MeshSource::Obj(fixture("models/quad.obj")));
+    assert_eq!(object.build_mesh().unwrap().triangle_count(), 2);
+}
+
+#[test]
+fn defaults_fill_a_minimal_scene() {
+    let scene = Scene::load(fixture("teapot.toml")).unwrap();
+    assert_eq!((scene.output.width, scene.output.height), (256, 256));
+    assert_eq!(scene.output.background, [0.0, 0.0, 0.0, 1.0]);
+    assert_eq!(scene.output.supersample, 1);
+    assert_eq!((scene.camera.fov_y_degrees, scene.camera.near, scene.camera.far), (40.0, 0.1, 100.0));
+    assert!(scene.lights.is_empty() && scene.quality.is_none());
+    assert_eq!(scene.objects[0].surface.path, fixture("shaders/checker.sl"));
+    assert_eq!(scene.objects[0].mesh, MeshSource::Teapot);
+}
+
+#[test]
+fn paths_resolve_against_the_given_directory() {
+    let text = format!(
+        "{CAMERA}[[light]]\nshader = \"l.sl\"\n\
+         [[object]]\nmesh = {{ obj = \"m/x.obj\" }}\nshader = \"/abs/s.sl\"\n"
+    );
+    let scene = Scene::parse(&text, "inline", "some/dir").unwrap();
+    assert_eq!(scene.lights[0].shader.path, Path::new("some/dir/l.sl"));
+    assert_eq!(scene.objects[0].mesh, MeshSource::Obj("some/dir/m/x.obj".into()));
+    assert_eq!(scene.objects[0].surface.path, Path::new("/abs/s.sl"));
+}
+
+#[test]
+fn a_bad_fixture_names_its_file_line_and_field() {
+    let path = fixture("bad_fov.toml");
+    let e = Scene::load(&path).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        format!("{}:6:7: camera.fov: expected a number, found a string", path.display())
+    );
+    assert_eq!(
+        (e.kind, e.position, e.field.as_deref()),
+        (SceneErrorKind::Schema, Some((6, 7)), Some("camera.fov"))
+    );
+}
+
+#[test]
+fn a_missing_file_says_so() {
+    let e = Scene::load("scenes/x.toml").unwrap_err();
+    assert_eq!(e.to_string(), "cannot read scenes/x.toml: No such file or directory");
+    assert_eq!(e.kind, SceneErrorKind::Read);
+}
+
+#[test]
+fn syntax_errors() {
+    assert_eq!(
+        error("[camera]\nfrom = [0, 0, -5]\nfov = = 40\n"),
+        "scenes/bad.toml:3:7: camera.fov: invalid TOML: extra `=`, expected nothing"
+    );
+    assert_eq!(
+        error("[camera]\nfrom = [0, 0, -5]\nfrom = [1, 2, 3]\n"),
+        "scenes/bad.toml:3:1: camera.from: invalid TOML: duplicate key"
+    );
+}
+
+#[test]
+fn wrong_types() {
+    assert_eq!(
+        error("[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\nfov = \"wide\"\n"),
+        "scenes/bad.toml:4:7: camera.fov: expected a number, found a string"
+    );
+    assert_eq!(
+        error("[camera]\nfrom = [0, 0]\nto = [0, 0, 0]\n"),
+        "scenes/bad.toml:2:8: camera.from: expected an array of 3 numbers, found 2 elements"
+    );
+    assert_eq!(
+        error(&format!("[output]\nwidth = 2.5\n{CAMERA}")),
+        "scenes/bad.toml:2:9: output.width: expected an integer, found the number 2.5"
+    );
+    assert_eq!(error("camera = 3\n"), "scenes/bad.toml:1:10: camera: expected a table, found the integer 3");
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}transform = {{ scale = [1, 1, 1] }}\n")),
+        "scenes/bad.toml:7:13: object[0].transform: expected an array, found a table"
+    );
+}
+
+#[test]
+fn unknown_fields_list_the_allowed_ones() {
+    assert_eq!(
+        error(&format!("{CAMERA}fovy = 3\n")),
+        "scenes/bad.toml:4:1: camera.fovy: unknown field `fovy`; allowed fields: from, to, up, fov, near, far"
+    );
+    assert_eq!(
+        error(&format!("[camra]\nfov = 3\n{CAMERA}")),
+        "scenes/bad.toml:1:2: camra: unknown field `camra`; allowed fields: output, camera, light, object, \
+         quality"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}{OBJECT}colour = [1, 1, 1]\n")),
+        "scenes/bad.toml:10:1: object[1].colour: unknown field `colour`; allowed fields: mesh, detail, \
+         shader, \
+         name, params, displacement, color, opacity, transform"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}transform = [{{ rotate = {{ angle = 1, axes = [1, 2, 3] }} }}]\n")),
+        "scenes/bad.toml:7:38: object[0].transform[0].rotate.axes: unknown field `axes`; allowed fields: \
+         angle, axis"
+    );
+}
+
+#[test]
+fn missing_fields() {
+    assert_eq!(error("[camera]\nto = [0, 0, 0]\n"), "scenes/bad.toml:1:1: camera: missing field `from`");
+    assert_eq!(error("[output]\nwidth = 3\n"), "scenes/bad.toml: the scene has no [camera] table");
+    assert_eq!(
+        error(&format!("{CAMERA}[[object]]\nmesh = \"cube\"\n")),
+        "scenes/bad.toml:4:1: object[0]: missing field `shader`"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}transform = [{{ rotate = {{ angle = 1 }} }}]\n")),
+        "scenes/bad.toml:7:25: object[0].transform[0].rotate: missing field `axis`"
+    );
+}
+
+#[test]
+fn meshes_and_transformations() {
+    assert_eq!(
+        error(&format!("{CAMERA}[[object]]\nmesh = \"sphear\"\nshader = \"a.sl\"\n")),
+        "scenes/bad.toml:5:8: object[0].mesh: unknown mesh kind `sphear`; expected one of sphere, torus, \
+         plane, \
+         cube, teapot, or { obj = \"file.obj\" }"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}[[object]]\nmesh = {{ file = \"a.obj\" }}\nshader = \"a.sl\"\n")),
+        "scenes/bad.toml:5:10: object[0].mesh.file: unknown field `file`; allowed fields: obj"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}[[object]]\nmesh = {{ obj = \" \" }}\nshader = \"a.sl\"\n")),
+        "scenes/bad.toml:5:16: object[0].mesh.obj: the OBJ file path is empty"
+    );
+    assert_eq!(
+        error(&format!(
+            "{CAMERA}{OBJECT}transform = [{{ scale = [1, 1, 1] }}, {{ translat = [1, 2, 3] }}]\n"
+        )),
+        "scenes/bad.toml:7:39: object[0].transform[1].translat: unknown transformation `translat`; expected \
+         translate, rotate, scale"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}transform = [{{ scale = [1, 1, 1], translate = [1, 2, 3] }}]\n")),
+        "scenes/bad.toml:7:14: object[0].transform[0]: expected a table with exactly one key, e.g. \
+         { translate = [0, 1, 0] }"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}transform = [{{ rotate = {{ angle = 30, axis = [0, 0, 0] }} }}]\n")),
+        "scenes/bad.toml:7:46: object[0].transform[0].rotate.axis: the rotation axis must not be zero"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}detail = 0\n")),
+        "scenes/bad.toml:7:10: object[0].detail: must be between 1 and 1024, found 0"
+    );
+}
+
+#[test]
+fn parameter_values() {
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}params = {{ Kd = {{ x = 1 }} }}\n")),
+        "scenes/bad.toml:7:17: object[0].params.Kd: expected a number, an array of numbers, a string or a \
+         boolean, found a table"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}params = {{ from = [1, \"a\", 3] }}\n")),
+        "scenes/bad.toml:7:23: object[0].params.from[1]: expected a number, found a string"
+    );
+}
+
+#[test]
+fn output_ranges() {
+    assert_eq!(
+        error(&format!("[output]\nwidth = 0\n{CAMERA}")),
+        "scenes/bad.toml:2:9: output.width: must be between 1 and 16384, found 0"
+    );
+    assert_eq!(
+        error(&format!("[output]\nheight = 16385\n{CAMERA}")),
+        "scenes/bad.toml:2:10: output.height: must be between 1 and 16384, found 16385"
+    );
+    assert_eq!(
+        error(&format!("[output]\nwidth = -5\n{CAMERA}")),
+        "scenes/bad.toml:2:9: output.width: must be between 1 and 16384, found -5"
+    );
+    assert_eq!(
+        error(&format!("[output]\nsupersample = 0\n{CAMERA}")),
+        "scenes/bad.toml:2:15: output.supersample: must be between 1 and 16, found 0"
+    );
+    assert_eq!(
+        error(&format!("[output]\nbackground = [1, 1]\n{CAMERA}")),
+        "scenes/bad.toml:2:14: output.background: expected 3 or 4 numbers (RGB or RGBA), found 2"
+    );
+}
+
+#[test]
+fn camera_checks() {
+    assert_eq!(
+        error(&format!("{CAMERA}fov = 180\n")),
+        "scenes/bad.toml:4:7: camera.fov: must be between 0 and 180 degrees (exclusive), found 180"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}fov = -10\n")),
+        "scenes/bad.toml:4:7: camera.fov: must be between 0 and 180 degrees (exclusive), found -10"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}near = 0\n")),
+        "scenes/bad.toml:4:8: camera.near: must be greater than 0, found 0"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}near = 1\nfar = 0.5\n")),
+        "scenes/bad.toml:5:7: camera.far: must be greater than camera.near (1), found 0.5"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}near = 200\n")),
+        "scenes/bad.toml:4:8: camera.near: must be less than camera.far (100 by default), found 200"
+    );
+    assert_eq!(
+        error("[camera]\nfrom = [1, 2, 3]\nto = [1, 2, 3]\n"),
+        "scenes/bad.toml:3:6: camera.to: must differ from camera.from (the camera would look nowhere)"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}up = [0, 0, 2]\n")),
+        "scenes/bad.toml:4:6: camera.up: must not be zero or parallel to the viewing direction"
+    );
+    assert_eq!(
+        error("[camera]\nfrom = [0, nan, -5]\nto = [0, 0, 0]\n"),
+        "scenes/bad.toml:2:8: camera.from: values must be finite numbers"
+    );
+}
+
+#[test]
+fn shader_paths_and_names() {
+    assert_eq!(
+        error(&format!("{CAMERA}[[light]]\nshader = \"l.sl\"\n[[light]]\nshader = \"\"\n")),
+        "scenes/bad.toml:7:10: light[1].shader: the shader path is empty"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}[[object]]\nmesh = \"cube\"\nshader = \"  \"\n")),
+        "scenes/bad.toml:6:10: object[0].shader: the shader path is empty"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{OBJECT}displacement = {{ shader = \"\" }}\n")),
+        "scenes/bad.toml:7:27: object[0].displacement.shader: the shader path is empty"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}[[light]]\nshader = \"l.sl\"\nname = \"\"\n")),
+        "scenes/bad.toml:6:8: light[0].name: the shader name is empty (leave `name` out instead)"
+    );
+}
+
+#[test]
+fn quality_checks() {
+    let quality = |body: &str| error(&format!("{CAMERA}{OBJECT}[quality]\n{body}"));
+    assert_eq!(
+        quality("param = \"steps\"\nvalues = []\nreference = 3\n"),
+        "scenes/bad.toml:9:10: quality.values: at least one setting is needed"
+    );
+    assert_eq!(
+        quality("param = \"steps\"\nobject = 1\nvalues = [1]\nreference = 3\n"),
+        "scenes/bad.toml:9:10: quality.object: there is no object 1 (the scene has 1, numbered from 0)"
+    );
+    assert_eq!(
+        quality("param = \"steps\"\nvalues = [1]\n"),
+        "scenes/bad.toml:7:1: quality: missing field `reference`"
+    );
+}
+
+#[test]
+fn the_documented_example_is_a_valid_scene() {
+    let source = include_str!("../src/scene/mod.rs");
+    let doc: Vec<&str> =
+        source.lines().filter_map(|l| l.strip_prefix("//!")).map(|l| l.trim_start_matches(' ')).collect();
+    let start = doc.iter().position(|l| *l == "```toml").unwrap() + 1;
+    let end = start + doc[start..].iter().position(|l| *l == "```").unwrap();
+    let text = doc[start..end].join("\n");
+    let scene = Scene::parse(&text, "module documentation", ".").unwrap();
+    assert_eq!((scene.lights.len(), scene.objects.len()), (1, 1));
+    let m = scene.object_transform(0);
+    assert!(
+        m.transform_point3(Vec3::X)
+            .abs_diff_eq(Vec3::new(2.0 * FRAC_PI_6.cos(), 0.0, 1.0 - 2.0 * FRAC_PI_6.sin()), 1e-3)
+    );
+}

@@ -167,3 +167,73 @@ fn eval_rejects_malformed_points_with_one_line() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("`zero` is not a number"), "{stderr}");
 }
+
+fn scene(name: &str) -> String {
+    format!("{}/examples/scenes/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Reads a PNG's size and the RGBA of one pixel.
+fn png_pixel(path: &std::path::Path, x: u32, y: u32) -> ((u32, u32), [u8; 4]) {
+    let image = patina_runtime::image::Image::read_png(path).expect("a PNG");
+    let p = image.pixels[(y * image.width + x) as usize];
+    ((image.width, image.height), p.map(|c| (c * 255.0).round() as u8))
+}
+
+#[test]
+fn render_writes_a_png_on_the_cpu_when_asked() {
+    let out_path = scratch("plastic-cpu.png", b"");
+    let out =
+        patina(&["render", &scene("plastic.toml"), "-o", out_path.to_str().unwrap(), "--backend", "cpu"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("CPU reference"), "{stderr}");
+    let (size, centre) = png_pixel(&out_path, 160, 120);
+    assert_eq!(size, (320, 240));
+    // The sphere covers the centre: lit orange-red plastic, not the dark blue background.
+    assert!(centre[0] > 40 && centre[0] > centre[2], "{centre:?}");
+}
+
+#[test]
+fn render_falls_back_to_the_cpu_when_the_gpu_is_off() {
+    let out_path = scratch("plastic-off.png", b"");
+    let out = Command::new(env!("CARGO_BIN_EXE_patina"))
+        .args(["render", &scene("flame.toml"), "-o", out_path.to_str().unwrap()])
+        .env("PATINA_GPU", "off")
+        .output()
+        .expect("runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("rendering on the CPU"));
+}
+
+#[test]
+fn malformed_and_missing_scenes_get_one_line() {
+    let bad = scratch("bad.toml", b"[camera]\nfov = \"wide\"\n");
+    let out = patina(&["render", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("bad.toml:2:7: camera.fov: expected a number"), "{stderr}");
+
+    let out = patina(&["render", "/nonexistent/scene.toml"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.starts_with("error: cannot read /nonexistent/scene.toml"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1);
+}
+
+#[test]
+fn compile_writes_wgsl_that_reparses_and_an_interface() {
+    let dir = std::env::temp_dir().join(format!("patina-compile-{}", std::process::id()));
+    let light = format!("{}:pointlight", example("lights.sl"));
+    let out = patina(&["compile", &example("plastic.sl"), "--light", &light, "-o", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let wgsl = std::fs::read_to_string(dir.join("plastic.wgsl")).unwrap();
+    naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&wgsl)));
+    assert!(wgsl.contains("fn vs_main") && wgsl.contains("fn fs_main") && wgsl.contains("roughness"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("plastic.json")).unwrap()).unwrap();
+    let names: Vec<&str> =
+        json["uniforms"].as_array().unwrap().iter().map(|u| u["name"].as_str().unwrap()).collect();
+    assert!(names.contains(&"l0_intensity") && names.contains(&"camera_to_clip"), "{names:?}");
+    assert_eq!(json["attributes"][0]["name"], "P");
+}

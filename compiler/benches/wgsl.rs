@@ -38,7 +38,7 @@ fn lights() -> Vec<Shader> {
         .shaders
         .into_iter()
         .map(|mut s| {
-            patina_compiler::opt::derivs::differentiate(&mut s);
+            patina_compiler::opt::prepare(&mut s);
             s
         })
         .collect()
@@ -55,7 +55,7 @@ fn compile(name: &str, text: &str, lights: &[Shader]) -> Option<Vec<String>> {
     let mut out = Vec::new();
     for shader in checked.program.shaders.iter().filter(|s| s.kind == ShaderKind::Surface) {
         let mut shader = shader.clone();
-        patina_compiler::opt::derivs::differentiate(&mut shader);
+        patina_compiler::opt::prepare(&mut shader);
         let stages = patina_compiler::split::split(&shader).ok()?;
         let program = wgsl::compile(&stages, &bound, &[]).ok()?;
         out.push(program.wgsl().ok()?);

@@ -50,10 +50,10 @@ pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
         };
         let file_shaders = if path == args.file { shaders.clone() } else { load(&path, &args.include)? };
         let mut light = pick(&file_shaders, ShaderKind::Light, name.as_deref(), &path)?;
-        patina_compiler::opt::derivs::differentiate(&mut light);
+        patina_compiler::opt::prepare(&mut light);
         lights.push(light);
     }
-    patina_compiler::opt::derivs::differentiate(&mut surface);
+    patina_compiler::opt::prepare(&mut surface);
     let stages = patina_compiler::split::split(&surface).map_err(|d| d.message)?;
     let bound: Vec<BoundLight> = lights
         .iter()

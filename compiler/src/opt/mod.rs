@@ -3,5 +3,14 @@
 //! `derivs` turns the derivative built-ins (`Du`, `Dv`, `Deriv`, `area`, `filterwidth`,
 //! `filterstep`, `calculatenormal`) into plain arithmetic on derivative values computed by
 //! forward-mode automatic differentiation, seeded from the screen-space derivatives of the inputs.
+//! `textures` turns texture lookups into one filter written as arithmetic on texel fetches, so
+//! that every backend filters the same way.
 
 pub mod derivs;
+pub mod textures;
+
+/// What every backend runs a checked shader through first: derivatives, then texture lookups.
+pub fn prepare(shader: &mut crate::ir::Shader) {
+    derivs::differentiate(shader);
+    textures::expand(shader);
+}

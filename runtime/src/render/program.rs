@@ -58,7 +58,7 @@ pub fn load(
         return Err(RenderError::Input(format!("{shown}: {what}")));
     };
     let mut shader_ir = found.clone();
-    patina_compiler::opt::derivs::differentiate(&mut shader_ir);
+    patina_compiler::opt::prepare(&mut shader_ir);
     let mut strings = Vec::new();
     let mut params = Vec::new();
     for (name, value) in &shader.params {

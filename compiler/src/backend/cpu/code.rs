@@ -227,6 +227,11 @@ pub enum Inst {
     Scatter { float: bool, base: Reg, len: u32, stride: u32, index: Reg, signed: bool, src: Reg },
     /// `dst` = a uniformly distributed float in [0, 1), a function of the point's index and `site`.
     Random { dst: Reg, site: u32 },
+    /// `dst` = channel `channel` of texel (x, y, z) of texture `texture` (coordinates in the
+    /// integer file, clamped into range).
+    Texel { texture: u32, channel: u8, dst: Reg, x: Reg, y: Reg, z: Reg },
+    /// `dst` (integer file, uniform) = the size of texture `texture` along `axis`.
+    TexSize { texture: u32, axis: u8, dst: Reg },
 }
 
 /// Structured control flow over instructions.
@@ -283,6 +288,8 @@ pub struct Code {
     pub int_constants: Vec<(u32, u32)>,
     /// The body, run once per batch of points.
     pub body: Vec<Node>,
+    /// The textures the code reads, by name, in the order `Inst::Texel` numbers them.
+    pub textures: Vec<String>,
 }
 
 impl Code {

@@ -18,7 +18,7 @@
 //! ```
 
 use super::code::Node;
-use super::exec::{LANES, Machine, Stop};
+use super::exec::{LANES, Machine, Stop, Texture};
 use super::lower::{self, Binding, Lowered, SlotKind};
 use super::scalar::Real;
 use crate::diag::{Code, Diagnostic};
@@ -123,6 +123,7 @@ impl CpuProgram {
     pub fn compile(shader: &Shader, binding: &Binding) -> Result<CpuProgram, Diagnostic> {
         let mut shader = shader.clone();
         crate::opt::derivs::differentiate(&mut shader);
+        crate::opt::textures::expand(&mut shader);
         let lowered = lower::lower(&shader, binding)?;
         Ok(CpuProgram { lowered })
     }
@@ -144,6 +145,11 @@ impl CpuProgram {
     /// The slot called `name`.
     pub fn slot(&self, name: &str) -> Option<SlotId> {
         self.slots().find(|(_, s)| s.name == name).map(|(id, _)| id)
+    }
+
+    /// The textures the program reads, by the names [`Evaluator::set_texture`] takes.
+    pub fn textures(&self) -> &[String] {
+        &self.lowered.code.textures
     }
 
     /// The number of instructions (static count).
@@ -172,6 +178,7 @@ impl<'p, F: Real> Evaluator<'p, F> {
     pub fn new(program: &'p CpuProgram) -> Self {
         let code = &program.lowered.code;
         let mut machine = Machine::new(code.files, DEFAULT_BUDGET);
+        machine.textures = vec![Texture::default(); code.textures.len()];
         for &(r, x) in &code.float_constants {
             machine.floats.uniform[r as usize] = F::from_f64(x);
         }
@@ -189,6 +196,19 @@ impl<'p, F: Real> Evaluator<'p, F> {
             e.set[i] = default;
         }
         e
+    }
+
+    /// Binds a texture the program reads (see [`CpuProgram::textures`]); an unbound one reads as
+    /// one black, transparent texel.
+    pub fn set_texture(&mut self, name: &str, texture: Texture) -> Result<(), EvalError> {
+        let i = self
+            .program
+            .textures()
+            .iter()
+            .position(|t| t == name)
+            .ok_or_else(|| EvalError::UnknownName(name.to_string()))?;
+        self.machine.textures[i] = texture;
+        Ok(())
     }
 
     /// Changes the iteration budget of each loop.

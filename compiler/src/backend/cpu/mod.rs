@@ -12,5 +12,6 @@ mod lower;
 pub mod scalar;
 
 pub use eval::{CpuProgram, EvalError, Evaluator, SlotId, SlotInfo};
+pub use exec::Texture;
 pub use lower::{Binding, LightBinding, SlotKind};
 pub(crate) use lower::{category_matches, element_type};

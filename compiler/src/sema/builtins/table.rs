@@ -190,6 +190,15 @@ pub const SIGNATURES: &[&str] = &[
     "float4 texture(texref, float4) [deriv]",
     "float4 texture(texref, float3) [deriv]",
     "float4 texture3d(texref, float4) [deriv]",
+    // Internal: what `opt::textures` expands texture lookups into, so that both backends share
+    // one filter (`docs/builtins.md`). A texel of a 2D or 3D texture by integer coordinates (in
+    // range), and a texture's size along an axis.
+    "float4 __texel2d(string, int, int)",
+    "float4 __texel2d(texref, int, int)",
+    "float4 __texel3d(string, int, int, int)",
+    "float4 __texel3d(texref, int, int, int)",
+    "int __texsize(string, int)",
+    "int __texsize(texref, int)",
     // Three- and four-vector operations.
     "float dot(float3, float3)",
     "float dot(float4, float4)",

@@ -79,6 +79,26 @@ impl<F: Real> Machine<F> {
                     scatter(&mut self.ints, base, index.as_lanes(), src, at, mask);
                 }
             }
+            Inst::Texel { texture, channel, dst, x, y, z } => {
+                let fallback = super::Texture::default();
+                let t = self.textures.get(texture as usize).unwrap_or(&fallback);
+                let ints = &self.ints;
+                let fetch = |lane: usize| {
+                    let at = |r: Reg| ints.at(r, lane) as i32;
+                    F::from_f64(f64::from(t.texel(at(x), at(y), at(z))[channel as usize]))
+                };
+                if dst.uniform {
+                    let v = fetch(0);
+                    self.floats.fill(dst, v);
+                } else {
+                    let values: [F; LANES] = std::array::from_fn(fetch);
+                    *self.floats.lanes_mut(dst) = values;
+                }
+            }
+            Inst::TexSize { texture, axis, dst } => {
+                let size = self.textures.get(texture as usize).map_or(1, |t| t.size[axis as usize].max(1));
+                self.ints.fill(dst, size);
+            }
             Inst::Random { dst, site } => {
                 let first = self.first_point;
                 let d = &mut self.floats.varying[dst.index as usize];

@@ -49,6 +49,34 @@ pub(crate) struct Machine<F> {
     pub first_point: u32,
     /// The most iterations one loop may run before the run stops.
     pub budget: u64,
+    /// The textures, as the code numbers them.
+    pub textures: Vec<Texture>,
+}
+
+/// A texture the interpreter reads: RGBA texels, x fastest, then y, then z.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    /// Texels along x, y and z (1 for unused axes).
+    pub size: [u32; 3],
+    /// The texels.
+    pub texels: std::sync::Arc<[[f32; 4]]>,
+}
+
+impl Default for Texture {
+    /// One black, transparent texel: what a lookup of an unbound texture reads.
+    fn default() -> Self {
+        Texture { size: [1, 1, 1], texels: std::sync::Arc::from(vec![[0.0f32; 4]]) }
+    }
+}
+
+impl Texture {
+    /// The texel at (x, y, z), each clamped into range.
+    pub fn texel(&self, x: i32, y: i32, z: i32) -> [f32; 4] {
+        let c = |v: i32, n: u32| v.clamp(0, n.max(1) as i32 - 1) as usize;
+        let [w, h, d] = self.size;
+        let i = (c(z, d) * h.max(1) as usize + c(y, h)) * w.max(1) as usize + c(x, w);
+        self.texels.get(i).copied().unwrap_or([0.0; 4])
+    }
 }
 
 impl<F: Real> Machine<F> {
@@ -62,6 +90,7 @@ impl<F: Real> Machine<F> {
             targets: Vec::with_capacity(64),
             first_point: 0,
             budget,
+            textures: Vec::new(),
         }
     }
 

@@ -184,6 +184,21 @@ impl Lower<'_> {
                 )
                 .with_note("noise is written in the language by the standard library (issue 7); until then it has no implementation on either backend"));
             }
+            "__texel2d" | "__texel3d" => {
+                let texture = self.texture_index(args[0])?;
+                let ints: Vec<Reg> = vals[1..].iter().map(|v| v.ints()[0]).collect();
+                let zero = self.emit.int(0);
+                let z = ints.get(2).copied().unwrap_or(zero);
+                Val::Float((0..4).map(|c| self.emit.texel(texture, c, ints[0], ints[1], z)).collect())
+            }
+            "__texsize" => {
+                let texture = self.texture_index(args[0])?;
+                let axis = match &self.shader.expr(args[1]).kind {
+                    ExprKind::Literal(crate::ir::Literal::Int(a)) => (*a).clamp(0, 2) as u8,
+                    _ => 0,
+                };
+                Val::Int(vec![self.emit.tex_size(texture, axis)])
+            }
             "texture" | "texture3d" | "environment" | "shadow" => {
                 return Err(Diagnostic::error(
                     DiagCode::NotExecutable,
@@ -366,6 +381,26 @@ impl Lower<'_> {
         let d = self.emit.binary(Binary::Max, zero, d);
         let e = self.emit.binary(Binary::Div, one, roughness);
         self.emit.binary(Binary::Pow, d, e)
+    }
+
+    /// The number of the texture a name or `texref` argument denotes (a string's value, or the
+    /// value the binding gives a texref parameter, or the parameter's name).
+    fn texture_index(&mut self, id: ExprId) -> Result<u32, Diagnostic> {
+        let name = match &self.shader.expr(id).kind {
+            ExprKind::Local(l) if self.shader.local(*l).ty.base == Base::Texref => self
+                .bound_string(*l)
+                .map(|s| s.to_string())
+                .unwrap_or_else(|| self.shader.local(*l).name.to_string()),
+            _ => self.string_of(id)?.map(|s| s.to_string()).unwrap_or_default(),
+        };
+        let index = match self.textures.iter().position(|t| *t == name) {
+            Some(i) => i,
+            None => {
+                self.textures.push(name);
+                self.textures.len() - 1
+            }
+        };
+        Ok(index as u32)
     }
 
     /// The RenderMan light sums, as the RI specification defines them with `illuminance`.

@@ -228,6 +228,20 @@ impl Emitter {
     }
 
     /// `random()` at call site `site`.
+    /// Channel `channel` of a texel; uniform when the coordinates are.
+    pub fn texel(&mut self, texture: u32, channel: u8, x: Reg, y: Reg, z: Reg) -> Reg {
+        let dst = self.temp(true, x.uniform && y.uniform && z.uniform);
+        self.push(Inst::Texel { texture, channel, dst, x, y, z });
+        dst
+    }
+
+    /// A texture's size along an axis (uniform).
+    pub fn tex_size(&mut self, texture: u32, axis: u8) -> Reg {
+        let dst = self.temp(false, true);
+        self.push(Inst::TexSize { texture, axis, dst });
+        dst
+    }
+
     pub fn random(&mut self, site: u32) -> Reg {
         let dst = self.temp(true, false);
         self.push(Inst::Random { dst, site });
@@ -357,5 +371,12 @@ fn relocate_inst(inst: &mut Inst, f: &Files) {
             fix(index, false, f);
         }
         Inst::Random { dst, .. } => fix(dst, true, f),
+        Inst::Texel { dst, x, y, z, .. } => {
+            fix(dst, true, f);
+            for r in [x, y, z] {
+                fix(r, false, f);
+            }
+        }
+        Inst::TexSize { dst, .. } => fix(dst, false, f),
     }
 }

@@ -123,6 +123,7 @@ pub fn lower(shader: &Shader, binding: &Binding) -> Result<Lowered, Diagnostic> 
         float_constants: l.emit.float_values.clone(),
         int_constants: l.emit.int_values.clone(),
         body,
+        textures: l.textures.clone(),
     };
     Ok(Lowered { code, slots: l.slots, defaults })
 }
@@ -147,6 +148,8 @@ pub(crate) struct Lower<'a> {
     pub light: Option<usize>,
     /// The next `random()` call site.
     pub random_sites: u32,
+    /// The textures read, by name, numbered in order of first use.
+    pub textures: Vec<String>,
 }
 
 /// A seed's input, hashable.
@@ -185,6 +188,7 @@ impl<'a> Lower<'a> {
             memo: FxHashMap::default(),
             light: None,
             random_sites: 0,
+            textures: Vec::new(),
         }
     }
 

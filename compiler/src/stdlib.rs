@@ -5,7 +5,10 @@
 pub const PREFIX: &str = "<stdlib>";
 
 /// Every module: its file name and its source.
-pub const MODULES: &[(&str, &str)] = &[("pattern.sl", include_str!("../../stdlib/pattern.sl"))];
+pub const MODULES: &[(&str, &str)] = &[
+    ("pattern.sl", include_str!("../../stdlib/pattern.sl")),
+    ("noise.sl", include_str!("../../stdlib/noise.sl")),
+];
 
 /// The source of the standard-library module `name` (e.g. `"pattern.sl"`).
 pub fn source(name: &str) -> Option<&'static str> {

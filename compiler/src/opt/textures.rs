@@ -12,13 +12,14 @@
 //! ```
 //!
 //! with `wrap(i) = ((i % w) + w) % w` and `T` the internal built-ins `__texel2d` / `__texel3d`,
-//! `w` from `__texsize`. The result is the first channel for a `float` lookup, RGB for a `color`,
+//! `w` from `__texsize2d` / `__texsize3d`. The result is the first channel for a `float` lookup, RGB for a `color`,
 //! RGBA for Stanford's `float4`. RenderMan's one-argument form reads `s` and `t`; the
 //! four-corner form uses the corners' mean. Stanford's float4 coordinate is homogeneous (divided
 //! by w); its float3 one is (s, t, r), of which a 2D lookup reads (s, t).
 //!
 //! Runs after `opt::derivs` (texture lookups carry no derivatives through it) and before the
-//! split; rewrites each lookup in place, appending the expressions it needs.
+//! split; rewrites each lookup in place, appending the expressions it needs, all at the lookup's
+//! rate.
 
 use crate::ir::build::Builder;
 use crate::ir::types::{Base, Type};
@@ -38,6 +39,8 @@ pub fn expand(shader: &mut Shader) {
             _ => continue,
         };
         let ret = shader.expr(id).ty;
+        let rate = shader.expr(id).rate;
+        let first_new = shader.exprs.len();
         let mut b = Builder::new(shader, span);
         let Some(coords) = coordinates(&mut b, &args, three_d) else { continue };
         let texture = args[0];
@@ -52,10 +55,13 @@ pub fn expand(shader: &mut Shader) {
             _ => rgba,
         };
         // The lookup's expression becomes a copy of the filtered value.
-        let rate = b.rate(value);
-        let e = &mut b.shader.exprs[id.0 as usize];
-        e.kind = ExprKind::Convert(value);
-        e.rate = rate;
+        b.shader.exprs[id.0 as usize].kind = ExprKind::Convert(value);
+        // The filter runs at the lookup's rate (per fragment: a lookup is a derivative consumer),
+        // never at its coordinates' rate: interpolating a filtered value, or a texel coordinate,
+        // between vertices would be a different filter.
+        for e in &mut b.shader.exprs[first_new..] {
+            e.rate = e.rate.join(rate);
+        }
     }
 }
 
@@ -95,9 +101,15 @@ fn coordinates(b: &mut Builder, args: &[ExprId], three_d: bool) -> Option<Vec<Ex
 
 /// Integer coordinates of the two texels around `coord` along an axis of `size` texels, and the
 /// weight of the second.
-fn axis(b: &mut Builder, texture: ExprId, which: i32, coord: ExprId) -> (ExprId, ExprId, ExprId) {
+fn axis(
+    b: &mut Builder,
+    texture: ExprId,
+    which: i32,
+    coord: ExprId,
+    three_d: bool,
+) -> (ExprId, ExprId, ExprId) {
     let a = b.int(which);
-    let size = b.call("__texsize", vec![texture, a]);
+    let size = b.call(if three_d { "__texsize3d" } else { "__texsize2d" }, vec![texture, a]);
     let size_f = b.convert(size, Type::FLOAT);
     let half = b.float(0.5);
     let scaled = b.binary(BinaryOp::Mul, coord, size_f);
@@ -124,8 +136,8 @@ fn mix(b: &mut Builder, x: ExprId, y: ExprId, t: ExprId) -> ExprId {
 }
 
 fn filter2(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {
-    let (x0, x1, fx) = axis(b, texture, 0, c[0]);
-    let (y0, y1, fy) = axis(b, texture, 1, c[1]);
+    let (x0, x1, fx) = axis(b, texture, 0, c[0], false);
+    let (y0, y1, fy) = axis(b, texture, 1, c[1], false);
     let mut texel = |x, y| b.call("__texel2d", vec![texture, x, y]);
     let (c00, c10, c01, c11) = (texel(x0, y0), texel(x1, y0), texel(x0, y1), texel(x1, y1));
     let top = mix(b, c00, c10, fx);
@@ -134,9 +146,9 @@ fn filter2(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {
 }
 
 fn filter3(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {
-    let (x0, x1, fx) = axis(b, texture, 0, c[0]);
-    let (y0, y1, fy) = axis(b, texture, 1, c[1]);
-    let (z0, z1, fz) = axis(b, texture, 2, c[2]);
+    let (x0, x1, fx) = axis(b, texture, 0, c[0], true);
+    let (y0, y1, fy) = axis(b, texture, 1, c[1], true);
+    let (z0, z1, fz) = axis(b, texture, 2, c[2], true);
     let plane = |b: &mut Builder, z| {
         let mut texel = |x, y| b.call("__texel3d", vec![texture, x, y, z]);
         let (c00, c10, c01, c11) = (texel(x0, y0), texel(x1, y0), texel(x0, y1), texel(x1, y1));

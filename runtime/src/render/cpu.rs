@@ -39,6 +39,7 @@ fn draw_object(fb: &mut Framebuffer, prepared: &Prepared, object: &Object) -> Re
 
     // The vertex stage.
     let mut vertex = Evaluator::<f32>::new(&surface.vertex);
+    bind_textures(&mut vertex, &surface.vertex, object);
     set_uniforms(&mut vertex, &surface.vertex, surface, prepared, frame, StageKind::Vertex)?;
     let mut columns: Vec<(String, Vec<f64>)> = Vec::new();
     for (_, slot) in surface.vertex.slots() {
@@ -123,6 +124,7 @@ fn draw_object(fb: &mut Framebuffer, prepared: &Prepared, object: &Object) -> Re
 
     // The fragment stage.
     let mut fragment = Evaluator::<f32>::new(&surface.fragment);
+    bind_textures(&mut fragment, &surface.fragment, object);
     set_uniforms(&mut fragment, &surface.fragment, surface, prepared, frame, StageKind::Fragment)?;
     let mut lights: Vec<Evaluator<f32>> = prepared
         .lights
@@ -337,4 +339,14 @@ fn object_colour(frame: &Frame, name: &str) -> Option<Vec<f64>> {
         _ => return None,
     };
     Some(c.iter().map(|x| f64::from(*x)).collect())
+}
+
+/// Gives a stage program the object's textures it reads.
+fn bind_textures(eval: &mut Evaluator<f32>, program: &CpuProgram, object: &Object) {
+    for (name, texture) in &object.textures {
+        if program.textures().contains(name) {
+            // Only names the program reads are offered, so this cannot fail.
+            let _ = eval.set_texture(name, texture.clone());
+        }
+    }
 }

@@ -29,18 +29,29 @@ pub fn render(gpu: &Gpu, prepared: &Prepared, width: u32, height: u32) -> Result
             };
             attributes.push(Attribute { location: a.location, components: a.components, data });
         }
-        owned.push((uniforms, attributes));
+        let textures: Vec<_> = object
+            .surface
+            .gpu
+            .interface
+            .textures
+            .iter()
+            .filter_map(|slot| {
+                let t = object.textures.iter().find(|(n, _)| *n == slot.name)?;
+                Some(super::textures::gpu_data(&t.1, slot.dimensions))
+            })
+            .collect();
+        owned.push((uniforms, attributes, textures));
     }
     let draws: Vec<Draw> = prepared
         .objects
         .iter()
         .zip(&owned)
-        .map(|(object, (uniforms, attributes))| Draw {
+        .map(|(object, (uniforms, attributes, textures))| Draw {
             module: &object.surface.gpu.module,
             vertex_entry: &object.surface.gpu.interface.vertex_entry,
             fragment_entry: &object.surface.gpu.interface.fragment_entry,
             uniforms,
-            textures: &[],
+            textures,
             attributes,
             indices: &object.mesh.indices,
             blend: Blend::PremultipliedOver,

@@ -6,6 +6,7 @@ mod cpu;
 mod frame;
 mod gpu;
 mod program;
+mod textures;
 
 use glam::Mat4;
 use patina_compiler::syntax::ast::ShaderKind;
@@ -60,6 +61,8 @@ pub struct Object {
     pub mesh: Mesh,
     /// Its transformations.
     pub frame: Frame,
+    /// The textures its program reads, by name.
+    pub textures: Vec<(String, patina_compiler::backend::cpu::Texture)>,
 }
 
 impl Object {
@@ -130,7 +133,15 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
             color: o.color,
             opacity: o.opacity,
         };
-        objects.push(Object { surface, mesh, frame });
+        let base = scene.file.parent().unwrap_or(std::path::Path::new("."));
+        let textures = surface
+            .gpu
+            .interface
+            .textures
+            .iter()
+            .map(|t| Ok((t.name.clone(), textures::load(&t.name, base)?)))
+            .collect::<Result<_, RenderError>>()?;
+        objects.push(Object { surface, mesh, frame, textures });
     }
     let [r, g, b, a] = scene.output.background;
     Ok(Prepared { lights, objects, background: [r * a, g * a, b * a, a], width, height, supersample: n })

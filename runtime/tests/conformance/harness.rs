@@ -50,8 +50,7 @@ impl Tol {
             Tol::ZeroSign => gpu == 0.0 && cpu == 0.0,
             _ if !gpu.is_finite() || !cpu.is_finite() => false,
             Tol::Near { abs, rel } => {
-                f64::from((gpu - cpu).abs()) <= abs + rel * f64::from(cpu.abs())
-                    || (f64::from(gpu) - f64::from(cpu)).abs() <= abs + rel * f64::from(cpu.abs())
+                (f64::from(gpu) - f64::from(cpu)).abs() <= abs + rel * f64::from(cpu.abs())
             }
             Tol::Ulp(n) => ulps(gpu, cpu) <= u64::from(n),
         }
@@ -94,8 +93,8 @@ pub struct Spec {
     pub points: usize,
     /// The outputs to compare, with their tolerances.
     pub outputs: Vec<(String, Tol)>,
-    /// Inputs whose names start with these are printed with a mismatch of an output whose name
-    /// starts with the key (e.g. `o3` -> `c3`): the inputs of the case that failed.
+    /// The prefix of the inputs to print with a mismatch of an output (e.g. `o3m1_0` -> `c3a`:
+    /// the inputs of the case that failed; an empty prefix prints every input).
     pub related: fn(&str) -> String,
 }
 
@@ -177,7 +176,7 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
 
     // The GPU: one kernel over every batch's points.
     let mut diff = shader.clone();
-    patina_compiler::opt::derivs::differentiate(&mut diff);
+    patina_compiler::opt::prepare(&mut diff);
     let names: Vec<&str> = inputs.iter().map(|(n, _, _)| n.as_str()).collect();
     let kernel = compile_kernel(&diff, &spec.lights, &[], &names, &outputs)
         .unwrap_or_else(|d| panic!("the WGSL backend rejects the test shader: {}", d.message));
@@ -203,7 +202,8 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
     let words: Vec<u32> =
         bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
 
-    // Compare.
+    // Compare (and, with PATINA_CONFORMANCE_REPORT set, print each output's largest difference).
+    let report = std::env::var_os("PATINA_CONFORMANCE_REPORT").is_some();
     let mut failures = Vec::new();
     let mut compared = 0;
     for (k, (name, tol)) in spec.outputs.iter().enumerate() {
@@ -211,6 +211,7 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
         let w = kv.words as usize;
         let mut bad = 0;
         let mut first = None;
+        let (mut max_abs, mut max_ulp) = (0.0f64, 0u64);
         for p in 0..total {
             for c in 0..w {
                 let word = words[p * kernel.output_stride as usize + kv.offset as usize + c];
@@ -218,7 +219,14 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
                 let ok = match (tol, kv.ty.base) {
                     (Tol::Int, _) => f64::from(word) == cpu64[k][p * w + c],
                     (_, Base::Bool | Base::Int | Base::Uint) => f64::from(word) == cpu32[k][p * w + c],
-                    _ => tol.accepts(f32::from_bits(word), cpu32[k][p * w + c] as f32),
+                    _ => {
+                        let (g, r) = (f32::from_bits(word), cpu32[k][p * w + c] as f32);
+                        if g.is_finite() && r.is_finite() {
+                            max_abs = max_abs.max((f64::from(g) - f64::from(r)).abs());
+                            max_ulp = max_ulp.max(ulps(g, r));
+                        }
+                        tol.accepts(g, r)
+                    }
                 };
                 if !ok {
                     bad += 1;
@@ -229,13 +237,16 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
                 }
             }
         }
+        if report && !matches!(tol, Tol::Int) {
+            eprintln!("{name:>12} {tol:?}: max |gpu - cpu| {max_abs:e}, max {max_ulp} ulp");
+        }
         if let Some((p, c, word, cpu)) = first {
             let (batch, point) = (p / points, p % points);
             let prefix = (spec.related)(name);
             let shown: Vec<String> = inputs
                 .iter()
                 .enumerate()
-                .filter(|(_, (n, _, _))| !prefix.is_empty() && n.starts_with(&prefix))
+                .filter(|(_, (n, _, _))| n.starts_with(&prefix))
                 .map(|(i, (n, _, _))| format!("{n} = {:?}", value_at(i, batch, point)))
                 .collect();
             let gpu_f = f32::from_bits(word);

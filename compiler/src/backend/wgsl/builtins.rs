@@ -1,10 +1,17 @@
-//! Built-in functions in naga IR, with the interpreter's definitions (`backend/cpu/lower`) where
-//! WGSL's own differ or do not exist.
+//! Built-in functions in naga IR, with the interpreter's definitions (`backend/cpu/lower`).
+//!
+//! Where WGSL has the function and is exact (`floor`, `min`, `mix`, ...) its own is used; where
+//! the interpreter fixes an order of operations that WGSL leaves open (`dot`, `length`, matrix
+//! products, `smoothstep`, `inversesqrt`) the sequence is written out, so that both backends give
+//! the same bits. Transcendentals (`sin`, `exp`, `pow`, ...) are WGSL's, within its accuracy
+//! rules. The composite families live beside this file: `geometry` (spaces, `transform`,
+//! `fresnel`), `matrices`, `colour`, `curves` (`spline`) and `strings` (`concat`, `match`).
 
-use naga::{BinaryOperator as Op, Expression, MathFunction as M};
+use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
+use smol_str::SmolStr;
 
 use super::body::{Translator, Value};
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir::ExprId;
 use crate::ir::types::{Base, Type};
 use crate::sema::builtins::Builtin;
@@ -32,7 +39,20 @@ impl Translator<'_> {
         if b.name == "integrate" {
             return self.integrate(args[0], ret);
         }
-        let vals: Vec<Value> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
+        if b.name.starts_with("__tex") {
+            // The texture argument is a binding, not a value: only the coordinates are computed.
+            let coords: Vec<Value> = args[1..].iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
+            if let Some(r) = self.texel_builtin(b.name, args, &coords) {
+                return r;
+            }
+        }
+        // Strings are compile-time values: string arguments are read by `fold_string` where they
+        // are used, and a zero stands in for them here.
+        let vals: Vec<Value> = args
+            .iter()
+            .zip(&types)
+            .map(|(a, t)| if t.base == Base::String { Ok(self.float(0.0)) } else { self.expr(*a) })
+            .collect::<Result<_, _>>()?;
         let v = |i: usize| vals[i];
         let is_int = matches!(ret.base, Base::Int | Base::Uint);
         // Arguments widened to the result's width (a scalar edge with a vector value, ...).
@@ -40,6 +60,8 @@ impl Translator<'_> {
         let wide = |this: &mut Self, i: usize| {
             if types[i].base.components() == 1 && n > 1 && !is_int { this.splat(vals[i], n) } else { vals[i] }
         };
+        // The value of a built-in without one (`fresnel`, `setcomp`, ...): never read.
+        let void = |this: &mut Self| this.float(0.0);
         Ok(match b.name {
             "radians" => self.scale(v(0), std::f64::consts::PI / 180.0),
             "degrees" => self.scale(v(0), 180.0 / std::f64::consts::PI),
@@ -56,7 +78,12 @@ impl Translator<'_> {
             }
             "exp" => self.math1(M::Exp, v(0)),
             "sqrt" => self.math1(M::Sqrt, v(0)),
-            "inversesqrt" => self.math1(M::InverseSqrt, v(0)),
+            // 1 / sqrt(x), as the interpreter (WGSL's inverseSqrt may differ by 2 ulp).
+            "inversesqrt" => {
+                let one = self.float(1.0);
+                let root = self.math1(M::Sqrt, v(0));
+                self.div(one, root)
+            }
             "log" if args.len() == 1 => self.math1(M::Log, v(0)),
             "log" => {
                 let (x, base) = (self.math1(M::Log, v(0)), self.math1(M::Log, v(1)));
@@ -65,14 +92,11 @@ impl Translator<'_> {
             "mod" => {
                 // a - b * floor(a / b), as the interpreter (WGSL's `%` truncates instead).
                 let b = wide(self, 1);
-                let q = self.binary(Op::Divide, v(0), b);
-                let f = self.math1(M::Floor, q);
-                let p = self.binary(Op::Multiply, b, f);
-                self.binary(Op::Subtract, v(0), p)
+                self.modulo(v(0), b)
             }
             "abs" if ret.base == Base::Uint => v(0),
             "abs" => self.math1(M::Abs, v(0)),
-            "sign" => self.math1(M::Sign, v(0)),
+            "sign" => self.sign(v(0)),
             "floor" => self.math1(M::Floor, v(0)),
             "ceil" => self.math1(M::Ceil, v(0)),
             "round" => self.math1(M::Round, v(0)),
@@ -88,14 +112,12 @@ impl Translator<'_> {
             "clamp" => {
                 let (lo, hi) = (wide(self, 1), wide(self, 2));
                 // min(max(x, lo), hi), as the interpreter (WGSL's clamp leaves lo > hi open).
-                let m = self.math2(M::Max, v(0), lo);
-                self.math2(M::Min, m, hi)
+                self.clamp_to(v(0), lo, hi)
             }
             "clamp01" => {
                 let (zero, one) = (self.float(0.0), self.float(1.0));
                 let (zero, one) = (self.splat(zero, n), self.splat(one, n));
-                let m = self.math2(M::Max, v(0), zero);
-                self.math2(M::Min, m, one)
+                self.clamp_to(v(0), zero, one)
             }
             "mix" => {
                 // a * (1 - t) + b * t, WGSL's formula.
@@ -104,49 +126,110 @@ impl Translator<'_> {
             }
             "step" => {
                 let edge = wide(self, 0);
-                self.math2(M::Step, edge, v(1))
+                self.step(edge, v(1))
             }
-            "smoothstep" => {
-                let (e0, e1) = (wide(self, 0), wide(self, 1));
-                self.math3(M::SmoothStep, e0, e1, v(2))
-            }
+            "smoothstep" => self.smoothstep(v(0), v(1), v(2)),
             "filterstep" if args.len() == 3 => self.filterstep_explicit(v(0), v(1), v(2)),
-            "select" => self.fb.add(Expression::Select { condition: v(0), accept: v(1), reject: v(2) }),
+            "select" => match types[1].base {
+                Base::Matrix3 if !types[1].is_array() => self.select_matrix(v(0), v(1), v(2), 3),
+                Base::Matrix4 if !types[1].is_array() => self.select_matrix(v(0), v(1), v(2), 4),
+                _ => self.pick(v(0), v(1), v(2)),
+            },
+            "random" => {
+                return Err(Diagnostic::error(
+                    Code::NotExecutable,
+                    "`random` is not available on the GPU",
+                    span,
+                    "this call",
+                )
+                .with_note(
+                    "the interpreter hashes the point's index within its evaluation and the call \
+                     site; a GPU invocation has no such index to reproduce it from",
+                ));
+            }
             "xcomp" | "ycomp" | "zcomp" => {
                 let i = ["xcomp", "ycomp", "zcomp"].iter().position(|c| *c == b.name).unwrap_or(0) as u32;
-                self.fb.add(Expression::AccessIndex { base: v(0), index: i })
+                self.at(v(0), i)
+            }
+            "setxcomp" | "setycomp" | "setzcomp" => {
+                let i = ["setxcomp", "setycomp", "setzcomp"].iter().position(|c| *c == b.name).unwrap_or(0);
+                let mut parts = self.parts(v(0), 3);
+                parts[i] = v(1);
+                let new = self.vector(&parts);
+                self.write_output(args[0], new);
+                void(self)
+            }
+            "comp" if types[0].base == Base::Matrix4 => self.matrix_component(v(0), v(1), v(2)),
+            "comp" => {
+                // The index converted to an integer and clamped into range, as the interpreter.
+                let i = self.float_to_int(v(1));
+                let i = self.clamp_int(i, 0, 2);
+                let i = self.fb.add(Expression::As { expr: i, kind: ScalarKind::Uint, convert: Some(4) });
+                self.fb.add(Expression::Access { base: v(0), index: i })
+            }
+            "setcomp" if types[0].base == Base::Matrix4 => {
+                let new = self.matrix_with(v(0), v(1), v(2), v(3));
+                self.write_output(args[0], new);
+                void(self)
+            }
+            "setcomp" => {
+                // Out-of-range indices change nothing (the interpreter compares each component's
+                // index with the converted one).
+                let i = self.float_to_int(v(1));
+                let old = self.parts(v(0), 3);
+                let parts: Vec<Value> = (0..3)
+                    .map(|k| {
+                        let kk = self.int(k);
+                        let here = self.binary(Op::Equal, i, kk);
+                        self.pick(here, v(2), old[k as usize])
+                    })
+                    .collect();
+                let new = self.vector(&parts);
+                self.write_output(args[0], new);
+                void(self)
             }
             "length" => self.length(v(0)),
             "distance" => {
-                let d = self.binary(Op::Subtract, v(0), v(1));
-                self.length(d)
+                let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
+                let d = self.zip_parts(Op::Subtract, &a, &b);
+                self.length_parts(&d)
             }
             "normalize" => self.normalize(v(0)),
-            "dot" => self.math2(M::Dot, v(0), v(1)),
-            "cross" => self.math2(M::Cross, v(0), v(1)),
-            "rgb" => self.fb.add(Expression::Swizzle {
-                size: naga::VectorSize::Tri,
-                vector: v(0),
-                pattern: [
-                    naga::SwizzleComponent::X,
-                    naga::SwizzleComponent::Y,
-                    naga::SwizzleComponent::Z,
-                    naga::SwizzleComponent::X,
-                ],
-            }),
+            "dot" => {
+                let k = types[0].base.components();
+                let (a, b) = (self.parts(v(0), k), self.parts(v(1), k));
+                self.dot_parts(&a, &b)
+            }
+            "cross" => {
+                let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
+                let mut term = |i: usize, j: usize| {
+                    let p = self.mul(a[i], b[j]);
+                    let q = self.mul(a[j], b[i]);
+                    self.sub(p, q)
+                };
+                let c = [term(1, 2), term(2, 0), term(0, 1)];
+                self.vector(&c)
+            }
+            "rgb" => self.xyz(v(0)),
             "faceforward" => {
                 let nref = match vals.get(2) {
                     Some(r) => *r,
                     None => self.global_value("Ng").unwrap_or(v(0)),
                 };
                 // WGSL faceForward: n where dot(i, nref) < 0, else -n.
-                let d = self.math2(M::Dot, v(1), nref);
+                let (i, r) = (self.parts(v(1), 3), self.parts(nref, 3));
+                let d = self.dot_parts(&i, &r);
                 let zero = self.float(0.0);
                 let facing = self.binary(Op::Less, d, zero);
                 let neg = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: v(0) });
-                self.fb.add(Expression::Select { condition: facing, accept: v(0), reject: neg })
+                self.pick(facing, v(0), neg)
             }
             "reflect" => self.reflect(v(0), v(1)),
+            "refract" => self.refract(v(0), v(1), v(2)),
+            "fresnel" => {
+                self.fresnel(args, &vals)?;
+                void(self)
+            }
             "ambient" => self.light_sum(LightTerm::Ambient, &vals)?,
             "diffuse" => self.light_sum(LightTerm::Diffuse, &vals)?,
             "specular" => self.light_sum(LightTerm::Specular, &vals)?,
@@ -155,6 +238,106 @@ impl Translator<'_> {
                 let l = self.normalize(v(0));
                 let brdf = self.specular_brdf(l, v(1), v(2), v(3));
                 self.splat(brdf, 3)
+            }
+            "transform" | "vtransform" | "ntransform" => self.transform(b.name, args, &vals, ret, span)?,
+            "transpose" => self.math1(M::Transpose, v(0)),
+            "affine" => {
+                let m = self.entries(v(0), 4);
+                let e: Vec<Value> = (0..9).map(|k| m[(k / 3) * 4 + k % 3]).collect();
+                self.matrix(&e, 3)
+            }
+            "invert" => {
+                let k = if types[0].base == Base::Matrix3 { 3 } else { 4 };
+                let m = self.entries(v(0), k);
+                let inv = self.invert_entries(&m, k as usize);
+                self.matrix(&inv, k)
+            }
+            "determinant" => {
+                let m = self.entries(v(0), 4);
+                let all: Vec<usize> = (0..4).collect();
+                self.minor(&m, 4, &all, &all)
+            }
+            "translate" => self.translate_or_scale(v(0), v(1), true),
+            "scale" => self.translate_or_scale(v(0), v(1), false),
+            "rotate" if ret.base == Base::Matrix4 => self.rotate_matrix(v(0), v(1), v(2)),
+            "rotate" => self.rotate_point(v(0), v(1), v(2), v(3)),
+            "ptlined" => self.ptlined(v(0), v(1), v(2)),
+            "depth" => self.depth(v(0)),
+            "ctransform" => {
+                let names: Vec<Option<SmolStr>> =
+                    args[..args.len() - 1].iter().map(|a| self.fold_string(*a)).collect();
+                let (from, to) = match names.as_slice() {
+                    [Some(from), Some(to)] => (from.clone(), to.clone()),
+                    [Some(to)] => (SmolStr::new("rgb"), to.clone()),
+                    _ => {
+                        return Err(Diagnostic::error(
+                            Code::NotExecutable,
+                            "colour space names must be known when the shader is compiled",
+                            span,
+                            "this call",
+                        ));
+                    }
+                };
+                self.ctransform(&from, &to, v(vals.len() - 1), span)?
+            }
+            "spline" => self.spline(args, &vals, ret, span)?,
+            "match" => self.pattern_match(args, span)?,
+            "concat" => {
+                return Err(self.error(
+                    span,
+                    "a string used as a value (`concat` is folded only where a name is expected)",
+                ));
+            }
+            "xyz_screen" => {
+                return Err(Diagnostic::error(
+                    Code::NotExecutable,
+                    "`xyz_screen` is not available on the GPU yet",
+                    span,
+                    "this call",
+                )
+                .with_note(
+                    "the interpreter reads it from an input of the evaluation; the fragment \
+                     stage's window position is not passed to the shader body yet",
+                ));
+            }
+            "Du" | "Dv" | "Deriv" | "filterwidth" | "filterstep" | "area" | "calculatenormal" => {
+                return Err(super::internal(
+                    span,
+                    format!(
+                        "internal error: `{}` reached the WGSL backend without being differentiated",
+                        b.name
+                    ),
+                ));
+            }
+            "noise" | "snoise" | "pnoise" | "cellnoise" => {
+                return Err(Diagnostic::error(
+                    Code::NotExecutable,
+                    format!("`{}` is not available on the GPU yet", b.name),
+                    span,
+                    "noise built-in",
+                )
+                .with_note(
+                    "noise is written in the language by the standard library (issue 7); until \
+                     then neither backend runs it",
+                ));
+            }
+            "texture" | "texture3d" => {
+                return Err(super::internal(
+                    span,
+                    format!(
+                        "internal error: `{}` reached the WGSL backend without being expanded (opt::prepare)",
+                        b.name
+                    ),
+                ));
+            }
+            "environment" | "shadow" => {
+                return Err(Diagnostic::error(
+                    Code::NotExecutable,
+                    format!("`{}` is not available on the GPU yet", b.name),
+                    span,
+                    "texture lookup",
+                )
+                .with_note("environment and shadow maps have no implementation on either backend yet"));
             }
             _ => {
                 return Err(
@@ -169,26 +352,73 @@ impl Translator<'_> {
         self.binary(Op::Multiply, a, k)
     }
 
-    /// `sqrt(v . v)`, as the interpreter.
+    /// `sqrt(v . v)` of a three-component vector, summed as the interpreter does.
     pub(super) fn length(&mut self, v: Value) -> Value {
-        let d = self.math2(M::Dot, v, v);
-        self.math1(M::Sqrt, d)
+        let p = self.parts(v, 3);
+        self.length_parts(&p)
     }
 
-    /// `v / length(v)`, as the interpreter (a zero vector gives NaN, as in WGSL).
+    /// `v / length(v)` of a three-component vector (a zero vector gives NaN, as in WGSL).
     pub(super) fn normalize(&mut self, v: Value) -> Value {
-        let len = self.length(v);
+        let p = self.parts(v, 3);
+        let len = self.length_parts(&p);
         let len = self.splat(len, 3);
-        self.binary(Op::Divide, v, len)
+        self.div(v, len)
     }
 
     /// `i - 2 * dot(n, i) * n`.
     pub(super) fn reflect(&mut self, i: Value, n: Value) -> Value {
-        let d = self.math2(M::Dot, n, i);
+        let (ip, np) = (self.parts(i, 3), self.parts(n, 3));
+        let d = self.dot_parts(&np, &ip);
         let two = self.float(2.0);
-        let k = self.binary(Op::Multiply, two, d);
-        let kn = self.binary(Op::Multiply, n, k);
-        self.binary(Op::Subtract, i, kn)
+        let k = self.mul(two, d);
+        let k = self.splat(k, 3);
+        let kn = self.mul(n, k);
+        self.sub(i, kn)
+    }
+
+    /// `x >= edge ? 1 : 0`, the interpreter's `step` (WGSL's `step` is 1 for a NaN `x` on some
+    /// devices, where the comparison is false).
+    fn step(&mut self, edge: Value, x: Value) -> Value {
+        let (zero, one) = (self.float(0.0), self.float(1.0));
+        let above = self.binary(Op::GreaterEqual, x, edge);
+        self.pick(above, one, zero)
+    }
+
+    /// `a . b` of three-component vectors, summed as the interpreter does.
+    pub(super) fn dot3(&mut self, a: Value, b: Value) -> Value {
+        let (a, b) = (self.parts(a, 3), self.parts(b, 3));
+        self.dot_parts(&a, &b)
+    }
+
+    /// The interpreter's `sign`: 1, -1, 0 for NaN, or `x` itself for zeros (keeping the sign of
+    /// zero). NaN is found from the bits: comparisons with NaN are not reliable on every device.
+    fn sign(&mut self, x: Value) -> Value {
+        let (zero, one, minus_one) = (self.float(0.0), self.float(1.0), self.float(-1.0));
+        let bits = self.fb.add(Expression::As { expr: x, kind: ScalarKind::Uint, convert: None });
+        let magnitude = self.fb.add(Expression::Literal(naga::Literal::U32(0x7fff_ffff)));
+        let magnitude = self.binary(Op::And, bits, magnitude);
+        let inf = self.fb.add(Expression::Literal(naga::Literal::U32(0x7f80_0000)));
+        let nan = self.binary(Op::Greater, magnitude, inf);
+        let r = self.pick(nan, zero, x);
+        let below = self.binary(Op::Less, x, zero);
+        let r = self.pick(below, minus_one, r);
+        let above = self.binary(Op::Greater, x, zero);
+        self.pick(above, one, r)
+    }
+
+    /// `t * t * (3 - 2 * t)` with `t = clamp((x - lo) / (hi - lo), 0, 1)`: WGSL's formula, written
+    /// out in the interpreter's order.
+    fn smoothstep(&mut self, lo: Value, hi: Value, x: Value) -> Value {
+        let num = self.sub(x, lo);
+        let den = self.sub(hi, lo);
+        let t = self.div(num, den);
+        let (zero, one, two, three) = (self.float(0.0), self.float(1.0), self.float(2.0), self.float(3.0));
+        let t = self.clamp_to(t, zero, one);
+        let tt = self.mul(t, t);
+        let t2 = self.mul(two, t);
+        let r = self.sub(three, t2);
+        self.mul(tt, r)
     }
 
     /// The 3-argument `filterstep(edge, x0, x1)`.
@@ -199,7 +429,7 @@ impl Translator<'_> {
         let (zero, one) = (self.float(0.0), self.float(1.0));
         let t = self.math2(M::Max, t, zero);
         let t = self.math2(M::Min, t, one);
-        let step = self.math2(M::Step, edge, x0);
+        let step = self.step(edge, x0);
         let wide = self.binary(Op::Greater, w, zero);
         self.fb.add(Expression::Select { condition: wide, accept: t, reject: step })
     }
@@ -208,7 +438,7 @@ impl Translator<'_> {
     fn specular_brdf(&mut self, l: Value, n: Value, v: Value, roughness: Value) -> Value {
         let h = self.binary(Op::Add, l, v);
         let h = self.normalize(h);
-        let d = self.math2(M::Dot, n, h);
+        let d = self.dot3(n, h);
         let (zero, one) = (self.float(0.0), self.float(1.0));
         let d = self.math2(M::Max, zero, d);
         let e = self.binary(Op::Divide, one, roughness);
@@ -232,12 +462,12 @@ impl Translator<'_> {
                 LightTerm::Ambient => None,
                 LightTerm::Diffuse => {
                     let nl = self.normalize(l);
-                    let d = self.math2(M::Dot, nl, vals[0]);
+                    let d = self.dot3(nl, vals[0]);
                     Some(self.math2(M::Max, zero, d))
                 }
                 LightTerm::Specular => {
                     let nl = self.normalize(l);
-                    let facing = self.math2(M::Dot, nl, vals[0]);
+                    let facing = self.dot3(nl, vals[0]);
                     let brdf = self.specular_brdf(nl, vals[0], vals[1], vals[2]);
                     let lit = self.binary(Op::GreaterEqual, facing, zero);
                     Some(self.fb.add(Expression::Select { condition: lit, accept: brdf, reject: zero }))
@@ -248,8 +478,8 @@ impl Translator<'_> {
                     let minus_v = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: v });
                     let r = self.reflect(minus_v, n);
                     let nl = self.normalize(l);
-                    let facing = self.math2(M::Dot, nl, vals[0]);
-                    let d = self.math2(M::Dot, r, nl);
+                    let facing = self.dot3(nl, vals[0]);
+                    let d = self.dot3(r, nl);
                     let d = self.math2(M::Max, zero, d);
                     let p = self.math2(M::Pow, d, vals[2]);
                     let lit = self.binary(Op::GreaterEqual, facing, zero);
@@ -279,5 +509,88 @@ impl Translator<'_> {
             sum = self.binary(Op::Add, sum, x?);
         }
         Ok(sum)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::backend::wgsl::{compile, compile_kernel};
+    use crate::syntax::preprocess::MemoryLoader;
+
+    /// The shader's module through the render path (split stages), or the first error.
+    fn module(src: &str) -> Result<String, String> {
+        let checked = crate::check_source("t.sl", src, &MemoryLoader::default());
+        assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
+        let mut shader = checked.program.shaders[0].clone();
+        crate::opt::prepare(&mut shader);
+        let stages = crate::split::split(&shader).map_err(|d| d.message)?;
+        let program = compile(&stages, &[], &[]).map_err(|d| d.message)?;
+        let wgsl = program.wgsl().map_err(|d| d.message)?;
+        naga::front::wgsl::parse_str(&wgsl).map_err(|e| e.emit_to_string(&wgsl))?;
+        Ok(wgsl)
+    }
+
+    #[test]
+    fn named_spaces_depth_and_colour_spaces_validate_and_reparse() {
+        // What the conformance kernels cannot bind (uniform matrices of named spaces, the
+        // clipping range of `depth`) still has to make a valid module.
+        let wgsl = module(
+            "surface t(string sp = \"world\") {
+                point p = transform(\"object\", P);
+                vector v = vtransform(\"world\", \"shader\", I);
+                normal n = ntransform(sp, matrix(2), N);
+                point q = point \"world\" (1, 2, 3) + transform(\"screen\", \"camera\", P);
+                matrix m = matrix \"object\" 1;
+                color c = ctransform(\"hsv\", \"xyY\", Cs) + color \"hsl\" (s, t, 0.5);
+                float d = depth(p) + comp(m, 1, 2) + determinant(invert(m));
+                Ci = c * d + color(xcomp(v), ycomp(n), zcomp(q));
+            }",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert!(wgsl.contains("space_object") && wgsl.contains("clip"), "{wgsl}");
+    }
+
+    #[test]
+    fn the_remaining_built_ins_validate_and_reparse() {
+        module(
+            "surface t(float knots[5] = {0, 1, 2, 3, 4}) {
+                point a = P;
+                setxcomp(a, s);
+                color c = Cs;
+                setcomp(c, t * 3, 0.5);
+                matrix m = rotate(translate(scale(matrix(1), point(1, 2, 3)), vector(1, 0, 0)), s, vector(0, 0, 1));
+                setcomp(m, 1, 2, t);
+                float kr, kt;
+                vector r, tr;
+                fresnel(I, N, 1.5, kr, kt, r, tr);
+                fresnel(I, N, 0.7, kr, kt);
+                float f = spline(\"bezier\", s, 1, 2, 3, 4, 5, 6, 7) + spline(t, knots)
+                    + ptlined(P, a, point(0, 0, 0)) + match(\"^a\", concat(\"a\", \"b\")) + kr + kt;
+                point pr = rotate(P, t, point(0, 0, 0), point(0, 1, 0));
+                vector sum = refract(I, N, 1.2) + tr + r + (transform(m, pr) - point(0, 0, 0));
+                Ci = spline(\"linear\", s, c, Cs, c, Cs) * f + color(xcomp(sum), ycomp(sum), zcomp(sum))
+                    + color(comp(c, 1), comp(m, 0, 3), sign(s));
+            }",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+    }
+
+    #[test]
+    fn random_and_xyz_screen_are_refused_with_a_reason() {
+        let refused = |body: &str| {
+            let src = format!("surface shader float4 t() {{ {body} }}");
+            let checked = crate::check_source("t.sl", &src, &MemoryLoader::default());
+            assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
+            let mut shader = checked.program.shaders[0].clone();
+            crate::opt::prepare(&mut shader);
+            match compile_kernel(&shader, &[], &[], &[], &["result"]) {
+                Ok(_) => panic!("{body} compiled"),
+                Err(d) => format!("{} {:?}", d.message, d.notes),
+            }
+        };
+        let r = refused("float x = random(); return {x, x, x, 1};");
+        assert!(r.contains("random") && r.contains("index"), "{r}");
+        let x = refused("return xyz_screen();");
+        assert!(x.contains("xyz_screen"), "{x}");
     }
 }

@@ -1,13 +1,21 @@
-//! Coordinate systems: values given in a named space, converted to "current" with the matrices
-//! the uniform block carries, by the interpreter's rules (`backend/cpu/lower/geometry.rs`).
+//! Coordinate systems and the geometric built-ins: values given in a named space, converted to
+//! "current" with the matrices the uniform block carries, `transform` and its family, `fresnel`,
+//! `refract`, `ptlined` and `depth`, by the interpreter's rules (`backend/cpu/lower/geometry.rs`),
+//! operation for operation (see `matrices`).
 
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, SwizzleComponent as C, VectorSize};
 
 use super::body::{Translator, Value};
 use super::interface::UniformSource;
-use crate::diag::Diagnostic;
+use super::matrices::Rule;
+use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
+use crate::ir::{ExprId, ExprKind};
 use crate::source::Span;
+
+/// The uniform that `depth` reads: near and far clipping distances in "current" (camera) units,
+/// named as the interpreter's input slot (`backend::cpu` `CLIP_SLOT`).
+pub(super) const CLIP_UNIFORM: &str = "clip";
 
 impl Translator<'_> {
     /// The matrix from "current" to `space` (`inverse`: back), from the uniform block.
@@ -25,6 +33,18 @@ impl Translator<'_> {
         self.load(member)
     }
 
+    /// The entries of a named space's matrices: (current to it, it to current); the identity's
+    /// for "current" and "camera", which the interpreter still multiplies by.
+    pub(super) fn space_entries(&mut self, space: &str) -> (Vec<Value>, Vec<Value>) {
+        if matches!(space, "current" | "camera") {
+            let identity = self.identity_entries();
+            return (identity.clone(), identity);
+        }
+        let to = self.space_matrix(space, false);
+        let from = self.space_matrix(space, true);
+        (self.entries(to, 4), self.entries(from, 4))
+    }
+
     /// `v` (of type `ty`) given in `space`, converted to "current".
     pub(super) fn space_to_current(
         &mut self,
@@ -36,26 +56,76 @@ impl Translator<'_> {
         if ty.base == Base::Color {
             return self.colour_to_rgb(space, v, span);
         }
-        if matches!(space, "current" | "camera") {
-            return Ok(v);
+        let (to_m, from_m) = self.space_entries(space);
+        if ty.base == Base::Matrix4 {
+            let value = self.entries(v, 4);
+            let product = self.product(&value, &from_m, 4);
+            return Ok(self.matrix(&product, 4));
         }
-        let from = self.space_matrix(space, true);
-        Ok(match ty.base {
-            // Language V * F; the module stores matrices transposed, so the product swaps.
-            Base::Matrix4 => self.binary(Op::Multiply, from, v),
-            Base::Normal => {
-                let to = self.space_matrix(space, false);
-                let t = self.math1(M::Transpose, to);
-                self.transform_by(t, v, 0.0)
+        let value = self.parts(v, 3);
+        let out = self.apply(&value, Rule::of(ty.base), &from_m, &to_m);
+        Ok(self.vector(&out))
+    }
+
+    /// `transform`, `vtransform` and `ntransform` in their four forms: to a space, from one space
+    /// to another, by a matrix, and from a space by a matrix.
+    pub(super) fn transform(
+        &mut self,
+        name: &str,
+        args: &[ExprId],
+        vals: &[Value],
+        ret: Type,
+        span: Span,
+    ) -> Result<Value, Diagnostic> {
+        let rule = match name {
+            "vtransform" => Rule::Vector,
+            "ntransform" => Rule::Normal,
+            _ => Rule::of(ret.base),
+        };
+        let is_string = |this: &Self, i: usize| this.shader.expr(args[i]).ty.base == Base::String;
+        let last = vals.len() - 1;
+        let value = self.parts(vals[last], 3);
+        let out = match args.len() {
+            2 if is_string(self, 0) => {
+                let to = self.space_name(args[0], span)?;
+                let (to_m, from_m) = self.space_entries(&to);
+                self.apply(&value, rule, &to_m, &from_m)
             }
-            Base::Vector => self.transform_by(from, v, 0.0),
+            3 if is_string(self, 1) => {
+                let from = self.space_name(args[0], span)?;
+                let to = self.space_name(args[1], span)?;
+                let (to_from, from_from) = self.space_entries(&from);
+                let current = self.apply(&value, rule, &from_from, &to_from);
+                let (to_m, from_m) = self.space_entries(&to);
+                self.apply(&current, rule, &to_m, &from_m)
+            }
+            3 => {
+                let from = self.space_name(args[0], span)?;
+                let (to_from, from_from) = self.space_entries(&from);
+                let current = self.apply(&value, rule, &from_from, &to_from);
+                let m = self.entries(vals[1], 4);
+                let inv = if rule == Rule::Normal { self.invert_entries(&m, 4) } else { m.clone() };
+                self.apply(&current, rule, &m, &inv)
+            }
             _ => {
-                let p = self.transform_by_full(from, v);
-                let w = self.fb.add(Expression::AccessIndex { base: p, index: 3 });
-                let xyz = self.xyz(p);
-                let w = self.splat(w, 3);
-                self.binary(Op::Divide, xyz, w)
+                let m = self.entries(vals[0], 4);
+                let inv = if rule == Rule::Normal { self.invert_entries(&m, 4) } else { m.clone() };
+                self.apply(&value, rule, &m, &inv)
             }
+        };
+        Ok(self.vector(&out))
+    }
+
+    /// The name of a space, which must be known when the shader is compiled.
+    fn space_name(&self, id: ExprId, span: Span) -> Result<String, Diagnostic> {
+        self.fold_string(id).map(|s| s.to_string()).ok_or_else(|| {
+            Diagnostic::error(
+                Code::NotExecutable,
+                "the name of a coordinate system must be known when the shader is compiled",
+                span,
+                "in this call",
+            )
+            .with_help("pass a string literal or a string parameter")
         })
     }
 
@@ -68,14 +138,6 @@ impl Translator<'_> {
         self.xyz(r)
     }
 
-    /// `m * vec4(v, 1)`.
-    fn transform_by_full(&mut self, m: Value, v: Value) -> Value {
-        let one = self.float(1.0);
-        let ty = self.mb.ty(Type::of(Base::Float4), false);
-        let v4 = self.fb.add(Expression::Compose { ty, components: vec![v, one] });
-        self.binary(Op::Multiply, m, v4)
-    }
-
     /// The first three components of a `vec4`.
     pub(super) fn xyz(&mut self, v: Value) -> Value {
         self.fb.add(Expression::Swizzle {
@@ -85,11 +147,116 @@ impl Translator<'_> {
         })
     }
 
-    /// A colour given in a named colour space, converted to RGB.
-    pub(super) fn colour_to_rgb(&mut self, space: &str, v: Value, span: Span) -> Result<Value, Diagnostic> {
-        match space {
-            "rgb" => Ok(v),
-            _ => Err(self.error(span, format!("colour space `{space}` on the GPU"))),
+    /// WGSL `refract(i, n, eta)`, as the interpreter writes it: 0 on total internal reflection.
+    pub(super) fn refract(&mut self, i: Value, n: Value, eta: Value) -> Value {
+        let (ip, np) = (self.parts(i, 3), self.parts(n, 3));
+        let d = self.dot_parts(&np, &ip);
+        let (one, zero) = (self.float(1.0), self.float(0.0));
+        let d2 = self.mul(d, d);
+        let sin2 = self.sub(one, d2);
+        let eta2 = self.mul(eta, eta);
+        let e = self.mul(eta2, sin2);
+        let k = self.sub(one, e);
+        let total = self.binary(Op::Less, k, zero);
+        let root = self.math1(M::Sqrt, k);
+        let ed = self.mul(eta, d);
+        let m = self.add(ed, root);
+        let out: Vec<Value> = (0..3)
+            .map(|c| {
+                let ei = self.mul(ip[c], eta);
+                let mn = self.mul(np[c], m);
+                let r = self.sub(ei, mn);
+                self.pick(total, zero, r)
+            })
+            .collect();
+        self.vector(&out)
+    }
+
+    /// `fresnel(I, N, eta, Kr, Kt [, R, T])`: the interpreter's unpolarized dielectric
+    /// reflectance (see `backend/cpu/lower/geometry.rs`), stored into the output arguments.
+    pub(super) fn fresnel(&mut self, args: &[ExprId], vals: &[Value]) -> Result<(), Diagnostic> {
+        let (i, n, eta) = (self.parts(vals[0], 3), self.parts(vals[1], 3), vals[2]);
+        let (zero, one, half) = (self.float(0.0), self.float(1.0), self.float(0.5));
+        let ni = self.normalize_parts(&i);
+        let nn = self.normalize_parts(&n);
+        let cos_i = self.dot_parts(&ni, &nn);
+        let cos_i = self.math1(M::Abs, cos_i);
+        let c2 = self.mul(cos_i, cos_i);
+        let sin_i2 = self.sub(one, c2);
+        let eta2 = self.mul(eta, eta);
+        let sin_t2 = self.mul(eta2, sin_i2);
+        let total = self.binary(Op::Greater, sin_t2, one);
+        let cos_t2 = self.sub(one, sin_t2);
+        let cos_t2 = self.math2(M::Max, cos_t2, zero);
+        let cos_t = self.math1(M::Sqrt, cos_t2);
+        let ratio = |this: &mut Self, a: Value, b: Value| {
+            let num = this.sub(a, b);
+            let den = this.add(a, b);
+            let r = this.div(num, den);
+            this.mul(r, r)
+        };
+        let eci = self.mul(eta, cos_i);
+        let rs2 = ratio(self, eci, cos_t);
+        let ect = self.mul(eta, cos_t);
+        let rp2 = ratio(self, cos_i, ect);
+        let sum = self.add(rs2, rp2);
+        let kr = self.mul(sum, half);
+        let kr = self.pick(total, one, kr);
+        let kt = self.sub(one, kr);
+        self.write_output(args[3], kr);
+        self.write_output(args[4], kt);
+        if args.len() == 7 {
+            let r = self.reflect(vals[0], vals[1]);
+            let t = self.refract(vals[0], vals[1], eta);
+            self.write_output(args[5], r);
+            self.write_output(args[6], t);
         }
+        Ok(())
+    }
+
+    /// Stores into the variable passed as an `output` argument (anything else is not stored, as
+    /// in the interpreter).
+    pub(super) fn write_output(&mut self, arg: ExprId, v: Value) {
+        let var = match &self.shader.expr(arg).kind {
+            ExprKind::Local(l) => self.local_var(*l),
+            ExprKind::Global(g) => self.global_var(g.name, Type::of(g.ty), g.perlight),
+            _ => return,
+        };
+        let p = self.pointer(var);
+        self.store(p, v);
+    }
+
+    /// The distance from `q` to the segment from `a` to `b` (t clamped to [0, 1]).
+    pub(super) fn ptlined(&mut self, a: Value, b: Value, q: Value) -> Value {
+        let (a, b, q) = (self.parts(a, 3), self.parts(b, 3), self.parts(q, 3));
+        let d = self.zip_parts(Op::Subtract, &b, &a);
+        let w = self.zip_parts(Op::Subtract, &q, &a);
+        let along = self.dot_parts(&w, &d);
+        let dd = self.dot_parts(&d, &d);
+        let t = self.div(along, dd);
+        let (zero, one) = (self.float(0.0), self.float(1.0));
+        let t = self.clamp_to(t, zero, one);
+        let td: Vec<Value> = d.iter().map(|x| self.mul(*x, t)).collect();
+        let off = self.zip_parts(Op::Subtract, &w, &td);
+        self.length_parts(&off)
+    }
+
+    /// `depth(p)`: `(z - near) / (far - near)`, near and far from the [`CLIP_UNIFORM`] uniform
+    /// (an empty range counts as 1, as in the interpreter).
+    pub(super) fn depth(&mut self, p: Value) -> Value {
+        let ty = Type { base: Base::Float, array: Some(2) };
+        let clip = self.uniform_value(CLIP_UNIFORM, ty, UniformSource::Global { name: CLIP_UNIFORM.into() });
+        // Uniform arrays of floats are padded to `vec4` elements.
+        let near = self.at(clip, 0);
+        let near = self.at(near, 0);
+        let far = self.at(clip, 1);
+        let far = self.at(far, 0);
+        let z = self.at(p, 2);
+        let range = self.sub(far, near);
+        let (zero, one) = (self.float(0.0), self.float(1.0));
+        let empty = self.binary(Op::Equal, range, zero);
+        let range = self.pick(empty, one, range);
+        let from_near = self.sub(z, near);
+        self.div(from_near, range)
     }
 }

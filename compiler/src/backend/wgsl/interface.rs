@@ -121,6 +121,18 @@ pub struct Varying {
     pub flat: bool,
 }
 
+/// A texture the program reads (group 1; its sampler, unused by the fetches, at `binding + 1`).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TextureSlot {
+    /// The texture's name: a string parameter's value or a `texref` parameter's binding (the
+    /// interpreter's `Evaluator::set_texture` takes the same name).
+    pub name: String,
+    /// 2 or 3.
+    pub dimensions: u32,
+    /// Its `@binding` in group 1.
+    pub binding: u32,
+}
+
 /// Everything outside the module that a compiled program needs.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Interface {
@@ -136,6 +148,8 @@ pub struct Interface {
     pub attributes: Vec<Attribute>,
     /// The varyings.
     pub varyings: Vec<Varying>,
+    /// The textures, in binding order.
+    pub textures: Vec<TextureSlot>,
     /// What the fragment stage writes to `@location(0)`: `Ci, Oi` (RGB from `Ci`, alpha the mean
     /// of `Oi`), `Ci` (alpha 1: the shader never writes `Oi`), or `result` (a Stanford shader's
     /// float4).

@@ -12,12 +12,17 @@
 
 mod body;
 mod builtins;
+mod colour;
+mod curves;
 mod entry;
 mod func;
 mod geometry;
 pub mod interface;
 mod kernel;
+mod matrices;
 mod module;
+mod strings;
+mod textures;
 mod uses;
 
 use naga::Span as NSpan;
@@ -119,6 +124,7 @@ pub fn compile(
     let fragment_body = body(&mut mb, &stages.fragment, "fragment_body")?;
     let (attributes, varyings) =
         entry::entry_points(&mut mb, stages, vertex_body, fragment_body, &light_functions, strings);
+    let textures = mb.texture_slots();
     let (uniforms, uniform_size) = mb
         .finish_uniforms()
         .map_err(|e| internal(stages.fragment.span, format!("internal error: uniform layout: {e}")))?;
@@ -146,6 +152,7 @@ pub fn compile(
         uniform_size,
         attributes,
         varyings,
+        textures,
         output: output.into(),
     };
     Ok(GpuProgram { module, info, interface })

@@ -21,6 +21,8 @@ pub(crate) struct ModuleBuilder {
     pub uniform_var: Handle<GlobalVariable>,
     /// The members asked for so far: (name, language type, source).
     uniforms: Vec<(String, Type, UniformSource)>,
+    /// The textures read: (name, dimension, binding, variable).
+    textures: Vec<(String, naga::ImageDimension, u32, Handle<GlobalVariable>)>,
 }
 
 /// A naga scalar for the language's scalar bases.
@@ -65,7 +67,41 @@ impl ModuleBuilder {
             privates: FxHashMap::default(),
             uniform_var,
             uniforms: Vec::new(),
+            textures: Vec::new(),
         }
+    }
+
+    /// The variable of texture `name`, if declared.
+    pub fn texture_var(&self, name: &str) -> Option<Handle<GlobalVariable>> {
+        self.textures.iter().find(|t| t.0 == name).map(|t| t.3)
+    }
+
+    /// How many textures are declared.
+    pub fn texture_count(&self) -> u32 {
+        self.textures.len() as u32
+    }
+
+    /// Records a declared texture.
+    pub fn add_texture(
+        &mut self,
+        name: &str,
+        dim: naga::ImageDimension,
+        binding: u32,
+        var: Handle<GlobalVariable>,
+    ) {
+        self.textures.push((name.to_string(), dim, binding, var));
+    }
+
+    /// The textures for the interface.
+    pub fn texture_slots(&self) -> Vec<super::interface::TextureSlot> {
+        self.textures
+            .iter()
+            .map(|(name, dim, binding, _)| super::interface::TextureSlot {
+                name: name.clone(),
+                dimensions: if *dim == naga::ImageDimension::D3 { 3 } else { 2 },
+                binding: *binding,
+            })
+            .collect()
     }
 
     /// The naga type of a language type; `uniform` gives the uniform block's form, where array

@@ -7,7 +7,7 @@ fn program(src: &str, light_src: Option<&str>) -> super::GpuProgram {
     let checked = crate::check_source("t.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
     let mut shader = checked.program.shaders[0].clone();
-    crate::opt::derivs::differentiate(&mut shader);
+    crate::opt::prepare(&mut shader);
     let stages = crate::split::split(&shader).unwrap();
     let lights_checked = light_src.map(|l| crate::check_source("l.sl", l, &MemoryLoader::default()));
     let lights: Vec<BoundLight> = lights_checked
@@ -59,7 +59,7 @@ fn every_example_surface_validates_and_reparses() {
         let checked = crate::check_source(&path.display().to_string(), &text, &loader);
         for s in checked.program.shaders.iter().filter(|s| s.kind == ShaderKind::Surface) {
             let mut s = s.clone();
-            crate::opt::derivs::differentiate(&mut s);
+            crate::opt::prepare(&mut s);
             let stages = crate::split::split(&s).unwrap();
             count += 1;
             match compile(&stages, &lights, &[]) {
@@ -74,8 +74,6 @@ fn every_example_surface_validates_and_reparses() {
                         ));
                     }
                 }
-                // Texture lookups are not translated yet (they need the runtime's texture binding).
-                Err(d) if s.name == "aniso" && d.message.contains("`texture`") => {}
                 Err(d) => failures.push(format!("{}: {}: {}", path.display(), s.name, d.message)),
             }
         }
@@ -91,7 +89,7 @@ fn kernels_validate_and_lay_out_their_records() {
         &MemoryLoader::default(),
     );
     let mut shader = checked.program.shaders[0].clone();
-    crate::opt::derivs::differentiate(&mut shader);
+    crate::opt::prepare(&mut shader);
     let k = super::compile_kernel(&shader, &[], &[], &["Kd", "n", "s", "dx(s)", "du"], &["Ci"]).unwrap();
     assert_eq!(k.input_stride, 5);
     assert_eq!(k.output_stride, 3);

@@ -192,13 +192,16 @@ pub const SIGNATURES: &[&str] = &[
     "float4 texture3d(texref, float4) [deriv]",
     // Internal: what `opt::textures` expands texture lookups into, so that both backends share
     // one filter (`docs/builtins.md`). A texel of a 2D or 3D texture by integer coordinates (in
-    // range), and a texture's size along an axis.
+    // range), and a texture's size along an axis (by dimension, so a size query declares the
+    // texture as its fetches do).
     "float4 __texel2d(string, int, int)",
     "float4 __texel2d(texref, int, int)",
     "float4 __texel3d(string, int, int, int)",
     "float4 __texel3d(texref, int, int, int)",
-    "int __texsize(string, int)",
-    "int __texsize(texref, int)",
+    "int __texsize2d(string, int)",
+    "int __texsize2d(texref, int)",
+    "int __texsize3d(string, int)",
+    "int __texsize3d(texref, int)",
     // Three- and four-vector operations.
     "float dot(float3, float3)",
     "float dot(float4, float4)",

@@ -191,7 +191,7 @@ impl Lower<'_> {
                 let z = ints.get(2).copied().unwrap_or(zero);
                 Val::Float((0..4).map(|c| self.emit.texel(texture, c, ints[0], ints[1], z)).collect())
             }
-            "__texsize" => {
+            "__texsize2d" | "__texsize3d" => {
                 let texture = self.texture_index(args[0])?;
                 let axis = match &self.shader.expr(args[1]).kind {
                     ExprKind::Literal(crate::ir::Literal::Int(a)) => (*a).clamp(0, 2) as u8,

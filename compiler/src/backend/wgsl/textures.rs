@@ -1,0 +1,107 @@
+//! Texel fetches for the shared texture filter of `opt::textures`: `__texel2d`, `__texel3d` and
+//! `__texsize2d`/`__texsize3d` as `textureLoad` and `textureDimensions`. Each texture the program reads is a
+//! `texture_2d<f32>` or `texture_3d<f32>` at group 1, binding 2k (its sampler's binding, 2k + 1,
+//! is left to the runtime's layout: the fetches use none).
+
+use naga::{
+    AddressSpace, Expression, GlobalVariable, ImageClass, ImageDimension, ImageQuery, Literal,
+    ResourceBinding, ScalarKind, Span, TypeInner, VectorSize,
+};
+
+use super::body::{Translator, Value};
+use crate::diag::Diagnostic;
+use crate::ir::types::Base;
+use crate::ir::{ExprId, ExprKind};
+
+impl Translator<'_> {
+    /// The texel-fetch built-ins (`coords`: the values of the arguments after the texture);
+    /// `None` for any other name.
+    pub(super) fn texel_builtin(
+        &mut self,
+        name: &str,
+        args: &[ExprId],
+        coords: &[Value],
+    ) -> Option<Result<Value, Diagnostic>> {
+        let dim = match name {
+            "__texel2d" => ImageDimension::D2,
+            "__texel3d" => ImageDimension::D3,
+            "__texsize2d" | "__texsize3d" => {
+                let axis = match &self.shader.expr(args[1]).kind {
+                    ExprKind::Literal(crate::ir::Literal::Int(a)) => (*a).clamp(0, 2) as u32,
+                    _ => 0,
+                };
+                let key = self.texture_key(args[0]);
+                let dim = if name == "__texsize3d" { ImageDimension::D3 } else { ImageDimension::D2 };
+                let image = self.texture(&key, dim);
+                let size =
+                    self.fb.add(Expression::ImageQuery { image, query: ImageQuery::Size { level: None } });
+                let axis = if dim == ImageDimension::D2 { axis.min(1) } else { axis };
+                let n = self.fb.add(Expression::AccessIndex { base: size, index: axis });
+                return Some(Ok(self.fb.add(Expression::As {
+                    expr: n,
+                    kind: ScalarKind::Sint,
+                    convert: Some(4),
+                })));
+            }
+            _ => return None,
+        };
+        let key = self.texture_key(args[0]);
+        let image = self.texture(&key, dim);
+        let (size, count) =
+            if dim == ImageDimension::D2 { (VectorSize::Bi, 2) } else { (VectorSize::Tri, 3) };
+        let ty = self.mb.inner(TypeInner::Vector { size, scalar: naga::Scalar::I32 });
+        let coordinate = self.fb.add(Expression::Compose { ty, components: coords[..count].to_vec() });
+        let level = self.fb.add(Expression::Literal(Literal::I32(0)));
+        Some(Ok(self.fb.add(Expression::ImageLoad {
+            image,
+            coordinate,
+            array_index: None,
+            sample: None,
+            level: Some(level),
+        })))
+    }
+
+    /// The texture a name or `texref` argument denotes, as the interpreter decides it.
+    fn texture_key(&self, id: ExprId) -> String {
+        match &self.shader.expr(id).kind {
+            ExprKind::Local(l) if self.shader.local(*l).ty.base == Base::Texref => {
+                let local = self.shader.local(*l);
+                self.strings
+                    .iter()
+                    .find(|(n, _)| *n == local.name)
+                    .map_or_else(|| local.name.to_string(), |(_, v)| v.clone())
+            }
+            _ => self.string_value(id).map(|s| s.to_string()).unwrap_or_default(),
+        }
+    }
+
+    /// The image expression of a texture, declared on first use.
+    fn texture(&mut self, key: &str, dim: ImageDimension) -> Value {
+        let var = match self.mb.texture_var(key) {
+            Some(v) => v,
+            None => {
+                let ty = self.mb.inner(TypeInner::Image {
+                    dim,
+                    arrayed: false,
+                    class: ImageClass::Sampled { kind: ScalarKind::Float, multi: false },
+                });
+                let binding = 2 * self.mb.texture_count();
+                let name = format!("tex_{}", super::module::sanitize(key));
+                let v = self.mb.module.global_variables.append(
+                    GlobalVariable {
+                        name: Some(name),
+                        space: AddressSpace::Handle,
+                        binding: Some(ResourceBinding { group: 1, binding }),
+                        ty,
+                        init: None,
+                        memory_decorations: naga::MemoryDecorations::empty(),
+                    },
+                    Span::UNDEFINED,
+                );
+                self.mb.add_texture(key, dim, binding, v);
+                v
+            }
+        };
+        self.fb.add(Expression::GlobalVariable(var))
+    }
+}

@@ -4,8 +4,8 @@
 //! formulas; `docs/numerics.md` lists them.
 
 use naga::{
-    Binding, BuiltIn, EntryPoint, Expression, FunctionArgument, FunctionResult, Handle, Interpolation,
-    Sampling, ShaderStage, Span, Statement, StructMember, TypeInner,
+    Binding, BuiltIn, Expression, FunctionArgument, FunctionResult, Handle, Interpolation, Sampling,
+    ShaderStage, Span, Statement, StructMember, TypeInner,
 };
 
 use super::body::{Translator, Value};
@@ -385,17 +385,7 @@ fn vertex_entry(
     let mut f = std::mem::replace(&mut t.fb, FnBuilder::new("")).finish();
     f.result = Some(FunctionResult { ty: out_ty, binding: None });
     drop(t);
-    mb.module.entry_points.push(EntryPoint {
-        name: "vs_main".into(),
-        stage: ShaderStage::Vertex,
-        early_depth_test: None,
-        workgroup_size: [0, 0, 0],
-        workgroup_size_overrides: None,
-        function: f,
-        mesh_info: None,
-        task_payload: None,
-        incoming_ray_payload: None,
-    });
+    mb.module.entry_points.push(super::module::entry_point("vs_main", ShaderStage::Vertex, [0, 0, 0], f));
     varyings
 }
 
@@ -712,17 +702,7 @@ fn fragment_entry(
     let mut f = std::mem::replace(&mut t.fb, FnBuilder::new("")).finish();
     f.result = Some(FunctionResult { ty: f4, binding: Some(plain(0)) });
     drop(t);
-    mb.module.entry_points.push(EntryPoint {
-        name: "fs_main".into(),
-        stage: ShaderStage::Fragment,
-        early_depth_test: None,
-        workgroup_size: [0, 0, 0],
-        workgroup_size_overrides: None,
-        function: f,
-        mesh_info: None,
-        task_payload: None,
-        incoming_ray_payload: None,
-    });
+    mb.module.entry_points.push(super::module::entry_point("fs_main", ShaderStage::Fragment, [0, 0, 0], f));
 }
 
 /// A light's parameters from the uniform block.

@@ -9,9 +9,9 @@
 //! in order, floats as their bit patterns, booleans as 0 or 1.
 
 use naga::{
-    AddressSpace, ArraySize, BinaryOperator as Op, Binding, BuiltIn, EntryPoint, Expression,
-    FunctionArgument, GlobalVariable, Literal, ResourceBinding, ScalarKind, ShaderStage, Span, Statement,
-    StorageAccess, TypeInner,
+    AddressSpace, ArraySize, BinaryOperator as Op, Binding, BuiltIn, Expression, FunctionArgument,
+    GlobalVariable, Literal, ResourceBinding, ScalarKind, ShaderStage, Span, Statement, StorageAccess,
+    TypeInner,
 };
 
 use super::body::{Translator, Value};
@@ -174,17 +174,12 @@ pub fn compile_kernel(
     }
     let f = std::mem::replace(&mut t.fb, FnBuilder::new("")).finish();
     drop(t);
-    mb.module.entry_points.push(EntryPoint {
-        name: "main".into(),
-        stage: ShaderStage::Compute,
-        early_depth_test: None,
-        workgroup_size: [KERNEL_WORKGROUP, 1, 1],
-        workgroup_size_overrides: None,
-        function: f,
-        mesh_info: None,
-        task_payload: None,
-        incoming_ray_payload: None,
-    });
+    mb.module.entry_points.push(super::module::entry_point(
+        "main",
+        ShaderStage::Compute,
+        [KERNEL_WORKGROUP, 1, 1],
+        f,
+    ));
     // Kernels take no uniform block; remove the placeholder so the module binds nothing at 0.
     let module = without_uniform_block(mb)?;
     let info =

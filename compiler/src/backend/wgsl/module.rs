@@ -285,3 +285,23 @@ pub(crate) fn sanitize(name: &str) -> String {
     }
     s
 }
+
+/// An entry point of `stage` running `function` (`workgroup` only for compute).
+pub(crate) fn entry_point(
+    name: &str,
+    stage: naga::ShaderStage,
+    workgroup: [u32; 3],
+    function: naga::Function,
+) -> naga::EntryPoint {
+    naga::EntryPoint {
+        name: name.into(),
+        stage,
+        early_depth_test: None,
+        workgroup_size: workgroup,
+        workgroup_size_overrides: None,
+        function,
+        mesh_info: None,
+        task_payload: None,
+        incoming_ray_payload: None,
+    }
+}

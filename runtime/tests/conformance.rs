@@ -82,11 +82,6 @@ mod tol {
     /// `rotate(m, angle, axis)`: a row of m (entries in [-2, 2]) times the rotation's columns:
     /// 3 * 2 * 3 * 2^-11.
     pub const ROTATE_MATRIX: Tol = Tol::abs(18.0 / 2048.0);
-    /// The `*` operator on two matrices: WGSL's matrix product is inherited from dot products,
-    /// whose sums it may take in any order; lavapipe's differs from the interpreter's left to
-    /// right sum by an ulp now and then. Four products of entries in [-2, 2] (at most 16 in
-    /// magnitude together) rounded in another order: 4 * 2^-24 * 16 = 3.8e-6.
-    pub const MATRIX_PRODUCT: Tol = Tol::abs(4e-6);
     /// Sums of products with a common factor across statements (`integrate` of per-light
     /// values all scaled by one uniform `k`): WGSL lets an implementation reassociate and fuse
     /// operations whose exact results are equal, and lavapipe's compiler turns `a*k + b*k` into
@@ -490,7 +485,7 @@ fn float_and_vector_operators() {
             ),
             c1("$o = $0 * $1 + $2;", &[("float4", ANY), ("float4", ANY), ("float4", ANY)], "float4", e),
             c1("$o = ($0 > 0) ? $1 : $2;", &[(F, R1), ("color", R4), ("color", R4)], "color", e),
-            c1("$o = $0 * $1;", &[("matrix", R2), ("matrix", R2)], "matrix", tol::MATRIX_PRODUCT),
+            c1("$o = $0 * $1;", &[("matrix", R2), ("matrix", R2)], "matrix", tol::EXACT),
             c1("$o = $0 + $1 - $2;", &[("matrix", R2), (F, R2), ("matrix", R2)], "matrix", e),
             c1("$o = $0 * $1;", &[("matrix3", R2), ("float3", R2)], "float3", e),
             c1("$o = $0 * $1;", &[("matrix", R2), ("float4", R2)], "float4", e),
@@ -595,10 +590,8 @@ fn transformations_and_matrices() {
     );
 }
 
-/// RenderMan's `a / M` (`a * inverse(M)`): the interpreter has it; the WGSL backend's operators
-/// (body.rs) refuse "division by a matrix" for now.
+/// RenderMan's `a / M` (`a * inverse(M)`), with the interpreter's inverse and product on both.
 #[test]
-#[ignore = "the WGSL backend does not translate division by a matrix yet (body.rs)"]
 fn matrix_division() {
     let m = ("matrix", R2);
     run_cases(&[c1("$o = $0 / $1;", &[m, m], "matrix", tol::EXACT)], &[]);

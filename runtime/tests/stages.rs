@@ -83,3 +83,14 @@ fn derivative_seeds_agree_within_quad_differences() {
     let t = Thresholds { fail: 0.02, hard_fail: 0.05, max_failing_fraction: 0.02 };
     assert_close("fw", &cpu, &gpu, t);
 }
+
+#[test]
+fn depth_is_normalized_by_the_cameras_clipping_distances() {
+    let shader = "surface d() { Ci = depth(P); Oi = 1; }";
+    let Some((cpu, gpu)) = render_both("depth", shader, "") else { return };
+    assert_close("depth", &cpu, &gpu, CLOSE);
+    // The plane's centre is 3 units away; the scene's clipping range is the default 0.1 to 100.
+    let centre = cpu.pixels[(24 * 48 + 24) as usize][0];
+    let expected = (3.0 - 0.1) / (100.0 - 0.1);
+    assert!((centre - expected).abs() < 2e-3, "{centre} vs {expected}");
+}

@@ -166,7 +166,7 @@ fn set_uniforms(
             let _ = eval.set(name, value);
         }
     }
-    for name in ["Cs", "Os", "time", "dtime", "E"] {
+    for name in ["Cs", "Os", "time", "dtime", "E", "clip"] {
         if program.slot(name).is_some() {
             let source =
                 patina_compiler::backend::wgsl::interface::UniformSource::Global { name: name.into() };

@@ -28,6 +28,8 @@ pub struct Frame {
     pub color: [f32; 3],
     /// See `color`.
     pub opacity: [f32; 3],
+    /// The camera's near and far clipping distances (what `depth` normalizes by).
+    pub clip: [f32; 2],
 }
 
 /// The predefined variables of one vertex, in camera space (RenderMan style).
@@ -111,6 +113,7 @@ pub fn uniform_value(
             "Ca" | "__ambient" => vec![0.0; 4],
             "time" | "dtime" => vec![0.0],
             "E" => vec![0.0; 3],
+            "clip" => f64s(&frame.clip),
             other => return Err(missing(format!("predefined variable `{other}`"))),
         },
         UniformSource::Space { name, inverse, light } => {

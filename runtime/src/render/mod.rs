@@ -132,6 +132,10 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
             light_spaces: light_spaces.clone(),
             color: o.color,
             opacity: o.opacity,
+            clip: {
+                let (near, far) = camera.clip_range();
+                [near, far]
+            },
         };
         let base = scene.file.parent().unwrap_or(std::path::Path::new("."));
         let textures = surface

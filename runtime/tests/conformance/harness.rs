@@ -264,6 +264,9 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
             ));
         }
     }
+    if report {
+        eprintln!("{} outputs, {compared} values compared", spec.outputs.len());
+    }
     assert!(
         failures.is_empty(),
         "\n{} of {} outputs disagree:\n{}\n\nshader:\n{}",

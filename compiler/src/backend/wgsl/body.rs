@@ -574,7 +574,12 @@ impl<'a> Translator<'a> {
             return Ok(self.mat_mul(a, ta, b, tb));
         }
         if matches!(op, B::Div) && matrix(tb) {
-            return Err(self.error(span, "division by a matrix"));
+            // RenderMan: a / M = a * inverse(M), with the interpreter's inverse.
+            let n = if tb.base == Base::Matrix3 { 3 } else { 4 };
+            let entries = self.entries(b, n);
+            let inverse = self.invert_entries(&entries, n as usize);
+            let inverse = self.matrix(&inverse, n);
+            return Ok(self.mat_mul(a, ta, inverse, tb));
         }
         // A scalar operand applies to every component.
         let (a, b) = match (width(ta), width(tb)) {
@@ -669,7 +674,13 @@ impl<'a> Translator<'a> {
             }
         };
         let (product, point) = match (is_m(ta), is_m(tb)) {
-            (true, true) => (self.binary(BinaryOperator::Multiply, b, a), false),
+            (true, true) => {
+                // Entry by entry in the interpreter's order of sums (WGSL leaves it open).
+                let n = if four { 4 } else { 3 };
+                let (x, y) = (self.entries(a, n), self.entries(b, n));
+                let entries = self.product(&x, &y, n as usize);
+                (self.matrix(&entries, n), false)
+            }
             (true, false) => {
                 let (v, point) = extend(self, b, tb);
                 (self.binary(BinaryOperator::Multiply, v, a), point)

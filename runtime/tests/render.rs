@@ -79,3 +79,12 @@ fn textures_agree() {
     let f = covered(&cpu, [0.1, 0.1, 0.12, 1.0]);
     assert!(f > 0.2, "coverage {f}");
 }
+
+#[test]
+fn displacement_agrees() {
+    // ripples.sl moves P along N and recomputes N with calculatenormal (derivatives of the
+    // displaced P): bump mapping at each fragment, on both backends. Its normals come from
+    // screen derivatives, so the brick scene's allowance applies.
+    let t = Thresholds { hard_fail: 0.05, ..Thresholds::default() };
+    both_within("ripples", 96, 72, t);
+}

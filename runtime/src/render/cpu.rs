@@ -255,6 +255,29 @@ fn shade_batch(
             }
         }
     }
+    // Displacement (bump mapping): the displacement program moves P and N for the surface.
+    if let Some(d) = &surface.displacement {
+        let mut e = Evaluator::<f32>::new(&d.cpu);
+        set_spaces(&mut e, &d.cpu, &frame.spaces);
+        for (name, value) in &d.values {
+            let _ = e.set(name, value);
+        }
+        let inputs: Vec<(&str, &[f64])> = columns
+            .iter()
+            .filter(|(name, _)| {
+                d.cpu.slot(name).is_some_and(|id| d.cpu.slots().any(|(i, s)| i == id && !s.uniform))
+            })
+            .map(|(name, c)| (name.as_str(), c.as_slice()))
+            .collect();
+        let outputs: Vec<&str> = ["P", "N"].into_iter().filter(|name| d.cpu.slot(name).is_some()).collect();
+        let moved = e.eval_points(n, &inputs, &outputs).map_err(|e| RenderError::Compile(e.to_string()))?;
+        for (name, value) in outputs.into_iter().zip(moved) {
+            match columns.iter_mut().find(|(n, _)| n == name) {
+                Some((_, c)) => *c = value,
+                None => columns.push((name.into(), value)),
+            }
+        }
+    }
     // The lights, at the surface point.
     let p = get(&columns, "P").unwrap_or_else(|| vec![0.0; n * if stanford { 4 } else { 3 }]);
     let p3: Vec<f64> = if stanford { (0..n).flat_map(|k| p[k * 4..k * 4 + 3].to_vec()).collect() } else { p };

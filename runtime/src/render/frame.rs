@@ -127,6 +127,11 @@ pub fn uniform_value(
                 .and_then(|l| find(&l.values, name))
                 .ok_or_else(|| missing(format!("light {light} `{name}`")))?
         }
+        UniformSource::DisplacementParam { name } => surface
+            .displacement
+            .as_ref()
+            .and_then(|d| find(&d.values, name))
+            .ok_or_else(|| missing(format!("displacement `{name}`")))?,
         UniformSource::Geometry { matrix: which } => matrix(match which {
             GeometryMatrix::ObjectToCamera => frame.object_to_camera,
             GeometryMatrix::NormalToCamera => frame.normal_to_camera,

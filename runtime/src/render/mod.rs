@@ -119,7 +119,11 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
         let object_to_world = scene.object_transform(i);
         let spaces = program::spaces(world_to_camera, object_to_world, &camera, width, height);
         let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera)?;
-        let surface = program::surface_program(loaded, &lights, &spaces)?;
+        let displacement = match &o.displacement {
+            Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera)?),
+            None => None,
+        };
+        let surface = program::surface_program(loaded, displacement, &lights, &spaces)?;
         let mesh = o
             .build_mesh()
             .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;

@@ -117,6 +117,16 @@ pub struct LightProgram {
     pub values: Vec<(String, Vec<f64>)>,
 }
 
+/// A displacement shader bound to an object, ready for the CPU (the GPU module includes it).
+pub struct DisplacementProgram {
+    /// The displacement shader.
+    pub loaded: LoadedShader,
+    /// The interpreter's program for it.
+    pub cpu: CpuProgram,
+    /// Its parameter values after defaults, by name.
+    pub values: Vec<(String, Vec<f64>)>,
+}
+
 /// An object's surface, ready for both backends.
 pub struct SurfaceProgram {
     /// The surface shader (differentiated, whole).
@@ -131,6 +141,8 @@ pub struct SurfaceProgram {
     pub fragment: CpuProgram,
     /// The host program's results: every parameter's value and every host transfer, by name.
     pub uniforms: Vec<(String, Vec<f64>)>,
+    /// The displacement shader run before the surface at each fragment, if any.
+    pub displacement: Option<DisplacementProgram>,
 }
 
 /// Compiles a light and computes its parameter values.
@@ -152,6 +164,7 @@ pub fn light_bindings(lights: &[LightProgram]) -> Vec<LightBinding> {
 /// Splits and compiles a surface for both backends and runs its host program.
 pub fn surface_program(
     loaded: LoadedShader,
+    displacement: Option<LoadedShader>,
     lights: &[LightProgram],
     spaces: &[(String, Mat4)],
 ) -> Result<SurfaceProgram, RenderError> {
@@ -164,7 +177,23 @@ pub fn surface_program(
             categories: Vec::new(),
         })
         .collect();
-    let gpu = wgsl::compile(&stages, &bound, &loaded.strings).map_err(|d| RenderError::Compile(d.message))?;
+    let displacement = match displacement {
+        Some(d) => {
+            let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
+            let cpu =
+                CpuProgram::compile(&d.shader, &binding).map_err(|e| RenderError::Compile(e.message))?;
+            let values = evaluate_params(&cpu, &d, spaces, &[])?;
+            Some(DisplacementProgram { loaded: d, cpu, values })
+        }
+        None => None,
+    };
+    let bound_displacement = displacement.as_ref().map(|d| BoundLight {
+        shader: &d.loaded.shader,
+        strings: d.loaded.strings.clone(),
+        categories: Vec::new(),
+    });
+    let gpu = wgsl::compile_object(&stages, bound_displacement.as_ref(), &bound, &loaded.strings)
+        .map_err(|d| RenderError::Compile(d.message))?;
     let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };
     let compile = |s: &Shader| CpuProgram::compile(s, &binding).map_err(|d| RenderError::Compile(d.message));
     let host = compile(&stages.host)?;
@@ -177,7 +206,7 @@ pub fn surface_program(
         .map(|t| t.name.to_string())
         .collect();
     let uniforms = evaluate_params(&host, &loaded, spaces, &host_outputs)?;
-    Ok(SurfaceProgram { loaded, stages, gpu, vertex, fragment, uniforms })
+    Ok(SurfaceProgram { loaded, stages, gpu, vertex, fragment, uniforms, displacement })
 }
 
 /// Runs a program once with the scene's parameter values and reads back every parameter (the

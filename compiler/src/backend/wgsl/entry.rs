@@ -60,6 +60,7 @@ pub(crate) fn entry_points(
     vertex_body: Handle<naga::Function>,
     fragment_body: Handle<naga::Function>,
     lights: &[(Handle<naga::Function>, &Shader)],
+    displacement: Option<(Handle<naga::Function>, &Shader)>,
     strings: &[(String, String)],
 ) -> (Vec<Attribute>, Vec<Varying>) {
     let vertex_uses = Uses::of(&stages.vertex, &stages.vertex.body);
@@ -70,6 +71,16 @@ pub(crate) fn entry_points(
     let mut crossings: Vec<Crossing> = Vec::new();
     // Lights are evaluated at the surface point and orientation, and Stanford's H needs E.
     let mut carried_globals = fragment_uses.globals.clone();
+    // A displacement shader runs at the top of the fragment stage on the surface's inputs.
+    if let Some((_, d)) = displacement {
+        for g in Uses::of(d, &d.body).globals {
+            if let Some(sg) = crate::sema::globals::lookup(g.name, surface.kind, surface.stanford)
+                && !carried_globals.iter().any(|c| c.name == sg.name)
+            {
+                carried_globals.push(sg);
+            }
+        }
+    }
     // Ng is computed from P's derivatives, oriented by N.
     if !lights.is_empty() || fragment_uses.has_global("Ng") {
         for name in ["P", "N", "E"] {
@@ -146,7 +157,7 @@ pub(crate) fn entry_points(
         &vertex_params,
         strings,
     );
-    fragment_entry(mb, stages, fragment_body, &fragment_uses, &crossings, lights, strings);
+    fragment_entry(mb, stages, fragment_body, &fragment_uses, &crossings, lights, displacement, strings);
     (attributes, varyings)
 }
 
@@ -501,6 +512,7 @@ fn uniform_input(t: &mut Translator, name: &str, ty: Type, source: UniformSource
     raw
 }
 
+#[allow(clippy::too_many_arguments)]
 fn fragment_entry(
     mb: &mut ModuleBuilder,
     stages: &Stages,
@@ -508,6 +520,7 @@ fn fragment_entry(
     uses: &Uses,
     crossings: &[Crossing],
     lights: &[(Handle<naga::Function>, &Shader)],
+    displacement: Option<(Handle<naga::Function>, &Shader)>,
     strings: &[(String, String)],
 ) {
     let shader = &stages.fragment;
@@ -619,6 +632,46 @@ fn fragment_entry(
         t.store(p, d);
     }
 
+    // Displacement, as bump mapping: the displacement shader moves P and N for the surface's
+    // shading (the geometry itself does not move); its derivative seeds are the inputs'.
+    if let Some((function, d)) = displacement {
+        let prefix = "d_";
+        let d_uses = Uses::of(d, &d.body);
+        for g in &d_uses.globals {
+            if let Some(value) = read_global(&mut t, g.name) {
+                let var = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
+                let ptr = t.pointer(var);
+                t.store(ptr, value);
+            }
+        }
+        for (input, axis, id) in &d_uses.seeds {
+            let Input::Global(g) = input else { continue };
+            let Some(value) = read_global(&mut t, g.name) else { continue };
+            let dv = derivative(&mut t, *axis, value);
+            let var = t.mb.private(&format!("{prefix}{}", seed_name(d, *input, *axis)), d.expr(*id).ty);
+            let ptr = t.pointer(var);
+            t.store(ptr, dv);
+        }
+        init_params(&mut t, d, prefix, &|name| UniformSource::DisplacementParam { name: name.into() });
+        t.fb.push(Statement::Call { function, arguments: Vec::new(), result: None });
+        for name in ["P", "N"] {
+            let (Some(g), Some(sg)) = (
+                crate::sema::globals::lookup(name, d.kind, d.stanford),
+                crate::sema::globals::lookup(name, shader.kind, shader.stanford),
+            ) else {
+                continue;
+            };
+            if d_uses.written.contains(name) && g.ty == sg.ty {
+                let src = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
+                let ptr = t.pointer(src);
+                let v = t.load(ptr);
+                let dst = t.global_var(sg.name, Type::of(sg.ty), false);
+                let dp = t.pointer(dst);
+                t.store(dp, v);
+            }
+        }
+    }
+
     // The lights, evaluated at the surface point.
     for (k, (function, light)) in lights.iter().enumerate() {
         let prefix = format!("l{k}_");
@@ -633,7 +686,10 @@ fn fragment_entry(
                 t.store(ptr, v);
             }
         }
-        init_light_params(&mut t, light, k, &prefix);
+        init_params(&mut t, light, &prefix, &|name| UniformSource::LightParam {
+            light: k,
+            name: name.into(),
+        });
         t.fb.push(Statement::Call { function: *function, arguments: Vec::new(), result: None });
         // The surface sees L from the point towards the light; a Stanford surface sees it
         // normalized, with the colour as a float4 and the half-angle vector H.
@@ -705,17 +761,16 @@ fn fragment_entry(
     mb.module.entry_points.push(super::module::entry_point("fs_main", ShaderStage::Fragment, [0, 0, 0], f));
 }
 
-/// A light's parameters from the uniform block.
-fn init_light_params(t: &mut Translator, light: &Shader, k: usize, prefix: &str) {
-    let uses = Uses::of(light, &light.body);
-    let names = super::body::variable_names(light, prefix);
-    for &l in &light.params {
-        let local = light.local(l);
+/// A bound shader's parameters from the uniform block.
+fn init_params(t: &mut Translator, shader: &Shader, prefix: &str, source: &dyn Fn(&str) -> UniformSource) {
+    let uses = Uses::of(shader, &shader.body);
+    let names = super::body::variable_names(shader, prefix);
+    for &l in &shader.params {
+        let local = shader.local(l);
         if !uses.locals.contains(&l) || matches!(local.ty.base, Base::String | Base::Texref) {
             continue;
         }
-        let source = UniformSource::LightParam { light: k, name: local.name.to_string() };
-        let value = uniform_input(t, &format!("{prefix}{}", local.name), local.ty, source);
+        let value = uniform_input(t, &format!("{prefix}{}", local.name), local.ty, source(&local.name));
         let var = t.mb.private(&names[&l], local.ty);
         let p = t.pointer(var);
         t.store(p, value);

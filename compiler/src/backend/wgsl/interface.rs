@@ -47,6 +47,11 @@ pub enum UniformSource {
         /// The parameter.
         name: String,
     },
+    /// A parameter of the bound displacement shader.
+    DisplacementParam {
+        /// The parameter.
+        name: String,
+    },
     /// A matrix the vertex stage's geometry needs (column-vector convention, `v' = M v`).
     Geometry {
         /// Which.

@@ -37,7 +37,7 @@ use interface::Interface;
 pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel};
 use module::ModuleBuilder;
 
-/// A light shader bound to a surface, with the values of its string parameters.
+/// A light or displacement shader bound to a surface, with the values of its string parameters.
 #[derive(Clone, Debug)]
 pub struct BoundLight<'a> {
     /// The light shader (checked and differentiated).
@@ -87,6 +87,17 @@ pub fn compile(
     lights: &[BoundLight],
     strings: &[(String, String)],
 ) -> Result<GpuProgram, Diagnostic> {
+    compile_object(stages, None, lights, strings)
+}
+
+/// As [`compile`], with a displacement shader run before the surface at each fragment (bump
+/// mapping: it moves `P` and `N` for shading, not the geometry).
+pub fn compile_object(
+    stages: &Stages,
+    displacement: Option<&BoundLight>,
+    lights: &[BoundLight],
+    strings: &[(String, String)],
+) -> Result<GpuProgram, Diagnostic> {
     let bindings: Vec<LightBinding> = lights
         .iter()
         .map(|l| LightBinding { ambient: is_ambient(l.shader), categories: l.categories.clone() })
@@ -120,10 +131,27 @@ pub fn compile(
         drop(t);
         Ok(mb.module.functions.append(f, NSpan::UNDEFINED))
     };
+    let displacement_function = match displacement {
+        Some(d) => {
+            let mut t = Translator::new(&mut mb, d.shader, "d_", &[], &d.strings, "displace");
+            t.block(&d.shader.body)?;
+            let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
+            drop(t);
+            Some((mb.module.functions.append(f, NSpan::UNDEFINED), d.shader))
+        }
+        None => None,
+    };
     let vertex_body = body(&mut mb, &stages.vertex, "vertex_body")?;
     let fragment_body = body(&mut mb, &stages.fragment, "fragment_body")?;
-    let (attributes, varyings) =
-        entry::entry_points(&mut mb, stages, vertex_body, fragment_body, &light_functions, strings);
+    let (attributes, varyings) = entry::entry_points(
+        &mut mb,
+        stages,
+        vertex_body,
+        fragment_body,
+        &light_functions,
+        displacement_function,
+        strings,
+    );
     let textures = mb.texture_slots();
     let (uniforms, uniform_size) = mb
         .finish_uniforms()

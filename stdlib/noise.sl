@@ -11,12 +11,16 @@
 // `snoise(x) = 2 * noise(x) - 1`).
 //
 // Precision (measured by compiler/tests/stdlib_noise.rs): in the interpreter's f64 mode
-// `perlin_improved_noise` is bit-identical to the Java reference for |coordinates| < 2^31; in f32
-// it is within 1e-6 of it up to coordinates of about 2^7 and the error grows with the coordinate's
-// ulp beyond (only the fraction's bits below the ulp are lost; see the test for the sweep). The
-// cell is split off with floor before anything else, so no offset (Perlin's original +10000,
-// T&M L8321) eats into the fraction. The GPU (WGSL) computes the same operations and agrees bit
-// for bit (runtime/tests/stdlib_noise_gpu.rs).
+// `perlin_improved_noise` is bit-identical to the Java reference for |coordinates| < 2^31. In f32
+// it is within 2e-6 of the reference at the same coordinates, at any magnitude (largest error
+// measured 1.76e-6, about 15 ulp of 1: the reference's order of operations, kept for the f64
+// mode, is not the most accurate one in f32). The cell is split off with floor before anything
+// else, so no offset (Perlin's original +10000, T&M L8321) eats into the fraction: what is lost
+// at large coordinates is only the coordinate's own rounding to f32, and against f64 at the exact
+// coordinate the f32 result stays within 1e-3 up to |coordinates| of 2^12 = 4096 (1.3e-3 at
+// 2^13, 0.18 at 2^20; above 2^23 every f32 is an integer and the noise is 0). The GPU (WGSL)
+// computes the same operations and agrees bit for bit (runtime/tests/stdlib_noise_gpu.rs).
+// Derivatives (Du, filterwidth, ...) go through this code by automatic differentiation.
 
 #ifndef PATINA_NOISE_SL
 #define PATINA_NOISE_SL
@@ -37,8 +41,8 @@ float perlin_lerp(float t, a, b)
 
 // The gradient of a lattice point dotted with the offset (x, y, z) from it: the low 4 bits of
 // `hash` pick one of the 12 edge directions (+-1, +-1, 0), (+-1, 0, +-1), (0, +-1, +-1) of
-// T&M L8445; the 4 spare codes repeat (1, 1, 0), (-1, 1, 0), (0, -1, 1), (0, -1, -1), as in the
-// reference. No multiplies: each product with a component +-1 is a sign.
+// T&M L8445, in the order listed there for codes 0-11; codes 12-15 repeat (1, 1, 0), (0, -1, 1),
+// (-1, 1, 0), (0, -1, -1), as in the reference. No multiplies: a component +-1 is a sign.
 float perlin_grad(int hash; float x, y, z)
 {
     int h = hash & 15;
@@ -53,9 +57,9 @@ float perlin_grad(int hash; float x, y, z)
 
 // Perlin's improved noise at (x, y, z): ImprovedNoise.noise(x, y, z), operation for operation.
 // Signed; 0 at every lattice point; C2; period 256 in each coordinate.
-// Range [-1.0266, 1.0364] (measured by local maximisation in every one of the 256^3 cells; the
-// maximum 1.036354 at (12.3553, 187.5185, 5.5) is also the bound for any choice of the 12
-// gradients, so no table does better).
+// Range [-1.0266, 1.0364]: measured by local maximisation in every one of the 256^3 cells (a
+// search outside the tests, which check the two extreme points); the maximum, 1.036354 at
+// (12.3553, 187.5185, 5.5), is also the bound for any choice of the 12 gradients.
 // Departure from the reference: the cell is reduced modulo 256 in float (exact: the cell and
 // 256 floor(cell / 256) are integers, and multiplying by 2^-8 is exact) before the conversion to
 // int, so the period holds for every finite input; the reference's (int) cast saturates beyond
@@ -121,18 +125,20 @@ float improved_noise(point p)
     return perlin_improved_noise(p[0], p[1], p[2]);
 }
 
+// The same at (x, y, z).
 float improved_noise(float x, y, z)
 {
     return perlin_improved_noise(x, y, z);
 }
 
 // The factor that brings improved noise into [-1, 1]: 0.9649 * 1.036354 = 0.99998 (the margin,
-// 2e-5, is far above the f32 rounding of the noise, about 1e-7).
+// 2e-5, is ten times the f32 error of the noise, 2e-6).
 #define PATINA_SNOISE_SCALE 0.9649
 
 // RenderMan's signed noise at a point, in [-1, 1] (T&M L2681's snoise convention): improved noise
-// scaled by PATINA_SNOISE_SCALE. 0 at the lattice points. Named snoise3 for now: a file-level
-// `snoise` would hide every overload of the built-in `snoise` (see the issue 7 notes).
+// scaled by PATINA_SNOISE_SCALE (its range is [-0.99056, 0.99998]). 0 at the lattice points.
+// Named snoise3 for now: a file-level function named `snoise` would hide every overload of the
+// built-in `snoise` (calls are resolved by name first, compiler/src/sema/lower/call.rs).
 float snoise3(point p)
 {
     return PATINA_SNOISE_SCALE * perlin_improved_noise(p[0], p[1], p[2]);

@@ -94,3 +94,20 @@ fn depth_is_normalized_by_the_cameras_clipping_distances() {
     let expected = (3.0 - 0.1) / (100.0 - 0.1);
     assert!((centre - expected).abs() < 2e-3, "{centre} vs {expected}");
 }
+
+#[test]
+fn window_positions_agree() {
+    // xyz_screen(): pixel centres, depth and 1/w, from the GPU's fragment position and from the
+    // CPU rasterizer.
+    let shader = "surface shader float4 w() {
+        float4 p = xyz_screen();
+        return {p[0] / 48, p[1] / 48, p[3] + p[2] * 0.01, 1};
+    }";
+    let Some((cpu, gpu)) = render_both("screen", shader, "") else { return };
+    assert_close("screen", &cpu, &gpu, CLOSE);
+    // Pixel (24, 24)'s centre is (24.5, 24.5); the plane is about 3 units away there, so 1/w is
+    // about 1/3 and the depth about 100 * 2.9 / (99.9 * 3) = 0.968.
+    let centre = cpu.pixels[(24 * 48 + 24) as usize];
+    assert_eq!([centre[0], centre[1]], [24.5 / 48.0, 24.5 / 48.0]);
+    assert!((centre[2] - (1.0 / 3.0 + 0.00968)).abs() < 0.005, "{centre:?}");
+}

@@ -221,6 +221,19 @@ fn shade_batch(
             columns.push((format!("dy({name})"), column(*offset, seed_width, Fragments::ddy_of)));
         }
     }
+    if program.slot("xyz_screen").is_some() {
+        // The window position, as WGSL's fragment `position`: pixel centres, the depth, and
+        // 1 / clip w, which the perspective depth d = a + b / w gives back as (d - a) / b.
+        let (a, b) = (frame.camera_to_clip.z_axis.z, frame.camera_to_clip.w_axis.z);
+        let col = (0..n)
+            .flat_map(|k| {
+                let (x, y) = frags.pixels[k];
+                let d = frags.depth[k];
+                [x as f32 + 0.5, y as f32 + 0.5, d, (d - a) / b].map(f64::from)
+            })
+            .collect();
+        columns.push(("xyz_screen".into(), col));
+    }
     for name in ["Cs", "Os"] {
         if let Some(c) = object_colour(frame, name)
             && !columns.iter().any(|(n, _)| n == name)

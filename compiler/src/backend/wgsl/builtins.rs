@@ -289,16 +289,11 @@ impl Translator<'_> {
                 ));
             }
             "xyz_screen" => {
-                return Err(Diagnostic::error(
-                    Code::NotExecutable,
-                    "`xyz_screen` is not available on the GPU yet",
-                    span,
-                    "this call",
-                )
-                .with_note(
-                    "the interpreter reads it from an input of the evaluation; the fragment \
-                     stage's window position is not passed to the shader body yet",
-                ));
+                // The fragment's window position: the fragment entry point (or a kernel's input
+                // of this name) fills this variable, as the interpreter's input of the same name.
+                let var = self.mb.private(super::entry::SCREEN_POSITION, ret);
+                let p = self.pointer(var);
+                self.load(p)
             }
             "Du" | "Dv" | "Deriv" | "filterwidth" | "filterstep" | "area" | "calculatenormal" => {
                 return Err(super::internal(
@@ -576,7 +571,7 @@ mod tests {
     }
 
     #[test]
-    fn random_and_xyz_screen_are_refused_with_a_reason() {
+    fn random_is_refused_with_a_reason() {
         let refused = |body: &str| {
             let src = format!("surface shader float4 t() {{ {body} }}");
             let checked = crate::check_source("t.sl", &src, &MemoryLoader::default());
@@ -590,7 +585,5 @@ mod tests {
         };
         let r = refused("float x = random(); return {x, x, x, 1};");
         assert!(r.contains("random") && r.contains("index"), "{r}");
-        let x = refused("return xyz_screen();");
-        assert!(x.contains("xyz_screen"), "{x}");
     }
 }

@@ -30,6 +30,10 @@ pub(crate) fn seed_name(shader: &Shader, input: Input, axis: Axis) -> String {
     format!("{axis}_{}", sanitize(&name))
 }
 
+/// The private variable holding the fragment's window position (`xyz_screen`): x and y in pixels
+/// (pixel centres at +0.5), z the depth, w = 1 / clip w.
+pub(crate) const SCREEN_POSITION: &str = "xyz_screen";
+
 /// The mesh attributes every vertex stage takes, at locations 0 to 4.
 pub(crate) const GEOMETRY_ATTRIBUTES: [(&str, u32); 5] =
     [("P", 3), ("N", 3), ("uv", 2), ("dPdu", 3), ("dPdv", 3)];
@@ -531,7 +535,12 @@ fn fragment_entry(
         ty: f4,
         binding: Some(Binding::BuiltIn(BuiltIn::Position { invariant: false })),
     });
-    let _position = t.fb.add(Expression::FunctionArgument(0));
+    let position = t.fb.add(Expression::FunctionArgument(0));
+    if uses.screen {
+        let var = t.mb.private(SCREEN_POSITION, Type::of(Base::Float4));
+        let p = t.pointer(var);
+        t.store(p, position);
+    }
     for (k, c) in crossings.iter().enumerate() {
         let ty = varying_type(t.mb, c.ty);
         t.fb.f.arguments.push(FunctionArgument {

@@ -61,6 +61,8 @@ enum Target {
     Local(crate::ir::LocalId),
     Global(&'static crate::sema::globals::Global, Option<usize>),
     Seed(Input, Axis),
+    /// A private variable of the module by name (`xyz_screen`).
+    Private(&'static str),
 }
 
 /// Compiles a differentiated shader as a kernel reading `inputs` and writing `outputs`.
@@ -225,6 +227,9 @@ fn resolve(shader: &Shader, name: &str) -> Option<(Target, Type)> {
         let ty = if ty.base == Base::Point { Type::of(Base::Vector) } else { ty };
         return Some((Target::Seed(input, axis), ty));
     }
+    if name == super::entry::SCREEN_POSITION {
+        return Some((Target::Private(super::entry::SCREEN_POSITION), Type::of(Base::Float4)));
+    }
     if let Some((base, rest)) = name.split_once('[') {
         let k: usize = rest.strip_suffix(']')?.parse().ok()?;
         let g = crate::sema::globals::lookup(base, shader.kind, shader.stanford)?;
@@ -249,6 +254,7 @@ fn target_pointer(t: &mut Translator, shader: &Shader, target: &Target, ty: Type
             v
         }
         Target::Seed(input, axis) => t.mb.private(&seed_name(shader, *input, *axis), ty),
+        Target::Private(name) => t.mb.private(name, ty),
     };
     t.pointer(var)
 }

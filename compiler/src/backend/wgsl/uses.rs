@@ -14,6 +14,8 @@ pub(crate) struct Uses {
     /// Globals the body stores into.
     pub written: FxHashSet<&'static str>,
     pub seeds: Vec<(Input, Axis, ExprId)>,
+    /// Whether the body reads the fragment's window position (`xyz_screen`).
+    pub screen: bool,
     seen: FxHashSet<ExprId>,
 }
 
@@ -103,6 +105,11 @@ impl Uses {
                 }
             }
             kind => {
+                if let ExprKind::Builtin(b, _) = kind
+                    && b.name == "xyz_screen"
+                {
+                    self.screen = true;
+                }
                 // Two-argument faceforward compares with the geometric normal.
                 if let ExprKind::Builtin(b, args) = kind
                     && b.name == "faceforward"

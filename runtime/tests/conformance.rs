@@ -834,12 +834,18 @@ fn what_neither_backend_runs_is_rejected_by_both() {
         let (cpu, gpu) = compile(body);
         assert!(cpu.is_err() && gpu.is_err(), "{body}: interpreter {cpu:?}, GPU {gpu:?}");
     }
-    // `random` hashes the interpreter's point index, which a GPU invocation does not have; the
-    // WGSL backend refuses it rather than computing different numbers.
-    let (cpu, gpu) = compile("o = random();");
-    assert!(cpu.is_ok(), "the interpreter runs random");
-    let message = gpu.expect_err("random has no GPU definition").message;
-    assert!(message.contains("random"), "{message}");
+}
+
+#[test]
+fn random_hashes_the_point_index_on_both() {
+    // `random()` is a hash of the point's index (the kernel's invocation index, the interpreter's
+    // point in the evaluation) and the call site, numbered per component in the same order.
+    let Some(gpu) = gpu::for_tests() else { return };
+    let src = "surface r(output varying float o = 0; output varying color c = 0) {
+            o = random();
+            c = random() * 0.5 + color random();
+        }";
+    run_shader(&gpu, src, &[], &[("o", tol::EXACT), ("c", tol::EXACT)]);
 }
 
 #[test]

@@ -111,3 +111,14 @@ fn window_positions_agree() {
     assert_eq!([centre[0], centre[1]], [24.5 / 48.0, 24.5 / 48.0]);
     assert!((centre[2] - (1.0 / 3.0 + 0.00968)).abs() < 0.005, "{centre:?}");
 }
+
+#[test]
+fn random_is_the_same_noise_on_both() {
+    // random() hashes the pixel (x + 4096 y) and the call site on both renderers.
+    let shader = "surface r() { Ci = color(random(), random(), 0.5); Oi = 1; }";
+    let Some((cpu, gpu)) = render_both("random", shader, "") else { return };
+    assert_close("random", &cpu, &gpu, CLOSE);
+    // And it is noise: neighbouring pixels differ.
+    let row = &cpu.pixels[24 * 48..25 * 48];
+    assert!(row.windows(2).filter(|w| w[0][0] != w[1][0]).count() > 15);
+}

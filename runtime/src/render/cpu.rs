@@ -4,7 +4,7 @@
 //! the seeds.
 
 use glam::Vec3;
-use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, POINT_INDEX};
 use patina_compiler::split::StageKind;
 
 use super::frame::{Frame, VertexGeometry, uniform_value};
@@ -220,6 +220,12 @@ fn shade_batch(
             columns.push((format!("dx({name})"), column(*offset, seed_width, Fragments::ddx_of)));
             columns.push((format!("dy({name})"), column(*offset, seed_width, Fragments::ddy_of)));
         }
+    }
+    if program.slot(POINT_INDEX).is_some() {
+        // What random() hashes: the pixel, as the GPU numbers it.
+        let row = patina_compiler::backend::wgsl::RANDOM_ROW;
+        let col = frags.pixels.iter().map(|(x, y)| f64::from(x + row * y)).collect();
+        columns.push((POINT_INDEX.into(), col));
     }
     if program.slot("xyz_screen").is_some() {
         // The window position, as WGSL's fragment `position`: pixel centres, the depth, and

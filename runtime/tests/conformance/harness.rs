@@ -130,6 +130,10 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
                     let n = if *uniform { 1 } else { points };
                     (0..n)
                         .map(|point| {
+                            // What `random()` hashes: give both backends the same point indices.
+                            if name == patina_compiler::backend::cpu::POINT_INDEX {
+                                return vec![(batch * points + point) as f64];
+                            }
                             let v = values(&Input { name, ty: *ty, uniform: *uniform, batch, point });
                             assert_eq!(v.len(), width(*ty), "values for `{name}`");
                             v

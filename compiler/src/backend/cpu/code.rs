@@ -225,8 +225,9 @@ pub enum Inst {
     Gather { float: bool, dst: Reg, base: Reg, len: u32, stride: u32, index: Reg, signed: bool },
     /// `array[clamp(index, 0, len - 1)] = src` in the lanes of the execution mask.
     Scatter { float: bool, base: Reg, len: u32, stride: u32, index: Reg, signed: bool, src: Reg },
-    /// `dst` = a uniformly distributed float in [0, 1), a function of the point's index and `site`.
-    Random { dst: Reg, site: u32 },
+    /// `dst` = a uniformly distributed float in [0, 1), a hash of `point` (integer file: the
+    /// point's index, unless the caller gives another) and `site`.
+    Random { dst: Reg, site: u32, point: Reg },
     /// `dst` = channel `channel` of texel (x, y, z) of texture `texture` (coordinates in the
     /// integer file, clamped into range).
     Texel { texture: u32, channel: u8, dst: Reg, x: Reg, y: Reg, z: Reg },

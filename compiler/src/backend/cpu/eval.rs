@@ -259,7 +259,6 @@ impl<'p, F: Real> Evaluator<'p, F> {
         while start < count {
             let n = (count - start).min(LANES);
             self.load(start, n, inputs);
-            self.machine.first_point = start as u32;
             let body: &[Node] = &self.program.lowered.code.body;
             self.machine.run(body, n).map_err(|Stop::IterationBudget { span, budget }| {
                 EvalError::IterationBudget { span, budget }
@@ -295,6 +294,14 @@ impl<'p, F: Real> Evaluator<'p, F> {
                             lanes[lane] = column[(start + lane) * width + c].to_f64() as i64 as u32;
                         }
                     }
+                }
+                continue;
+            }
+            if slot.name == lower::POINT_INDEX && self.set[i].is_none() && !slot.float {
+                // Each point's index in this evaluation, unless the caller gives others.
+                let lanes = self.machine.ints.lanes_mut(slot.regs[0]);
+                for (lane, x) in lanes.iter_mut().enumerate() {
+                    *x = (start + lane) as u32;
                 }
                 continue;
             }

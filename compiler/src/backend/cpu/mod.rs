@@ -13,5 +13,5 @@ pub mod scalar;
 
 pub use eval::{CpuProgram, EvalError, Evaluator, SlotId, SlotInfo};
 pub use exec::Texture;
-pub use lower::{Binding, LightBinding, SlotKind};
+pub use lower::{Binding, LightBinding, POINT_INDEX, SlotKind};
 pub(crate) use lower::{category_matches, element_type};

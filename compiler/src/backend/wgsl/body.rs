@@ -37,6 +37,8 @@ pub(crate) struct Translator<'a> {
     /// The bound light whose shader this is (`None` for the surface), for its spaces.
     pub owner: Option<usize>,
     memo: FxHashMap<(ExprId, Option<usize>), Handle<Expression>>,
+    /// The `random()` call sites numbered so far (in the interpreter's order).
+    pub random_sites: u32,
     names: FxHashMap<LocalId, String>,
     functions: u32,
 }
@@ -64,6 +66,7 @@ impl<'a> Translator<'a> {
             light: None,
             owner: None,
             memo: FxHashMap::default(),
+            random_sites: 0,
             names,
             functions: 0,
         }

@@ -136,16 +136,23 @@ impl Translator<'_> {
                 _ => self.pick(v(0), v(1), v(2)),
             },
             "random" => {
-                return Err(Diagnostic::error(
-                    Code::NotExecutable,
-                    "`random` is not available on the GPU",
-                    span,
-                    "this call",
-                )
-                .with_note(
-                    "the interpreter hashes the point's index within its evaluation and the call \
-                     site; a GPU invocation has no such index to reproduce it from",
-                ));
+                // The interpreter's hash of the point index and the call site (one site per
+                // component, numbered in the same order), in u32 arithmetic.
+                let var = self.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
+                let p = self.pointer(var);
+                let point = self.load(p);
+                let parts: Vec<Value> = (0..ret.base.components())
+                    .map(|_| {
+                        self.random_sites += 1;
+                        self.random_hash(point, self.random_sites)
+                    })
+                    .collect();
+                if parts.len() == 1 {
+                    parts[0]
+                } else {
+                    let ty = self.mb.ty(ret, false);
+                    self.fb.add(Expression::Compose { ty, components: parts })
+                }
             }
             "xcomp" | "ycomp" | "zcomp" => {
                 let i = ["xcomp", "ycomp", "zcomp"].iter().position(|c| *c == b.name).unwrap_or(0) as u32;
@@ -507,9 +514,41 @@ impl Translator<'_> {
     }
 }
 
+impl Translator<'_> {
+    /// `random()`'s value for one call site: `pcg(pcg(point) ^ site * 0x9e3779b9)`, its top 24 bits
+    /// over 2^24 (`exec::instructions::random`).
+    fn random_hash(&mut self, point: Value, site: u32) -> Value {
+        let u = |this: &mut Self, x: u32| this.fb.add(Expression::Literal(naga::Literal::U32(x)));
+        let pcg = |this: &mut Self, x: Value| {
+            let (m, a) = (u(this, 747_796_405), u(this, 2_891_336_453));
+            let state = this.binary(Op::Multiply, x, m);
+            let state = this.binary(Op::Add, state, a);
+            let (k28, k4) = (u(this, 28), u(this, 4));
+            let top = this.binary(Op::ShiftRight, state, k28);
+            let shift = this.binary(Op::Add, top, k4);
+            let shifted = this.binary(Op::ShiftRight, state, shift);
+            let word = this.binary(Op::ExclusiveOr, shifted, state);
+            let m2 = u(this, 277_803_737);
+            let word = this.binary(Op::Multiply, word, m2);
+            let k22 = u(this, 22);
+            let high = this.binary(Op::ShiftRight, word, k22);
+            this.binary(Op::ExclusiveOr, high, word)
+        };
+        let inner = pcg(self, point);
+        let salt = u(self, site.wrapping_mul(0x9e37_79b9));
+        let mixed = self.binary(Op::ExclusiveOr, inner, salt);
+        let h = pcg(self, mixed);
+        let k8 = u(self, 8);
+        let top = self.binary(Op::ShiftRight, h, k8);
+        let f = self.fb.add(Expression::As { expr: top, kind: naga::ScalarKind::Float, convert: Some(4) });
+        let scale = self.float(1.0 / 16_777_216.0);
+        self.binary(Op::Multiply, f, scale)
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use crate::backend::wgsl::{compile, compile_kernel};
+    use crate::backend::wgsl::compile;
     use crate::syntax::preprocess::MemoryLoader;
 
     /// The shader's module through the render path (split stages), or the first error.
@@ -568,22 +607,5 @@ mod tests {
             }",
         )
         .unwrap_or_else(|e| panic!("{e}"));
-    }
-
-    #[test]
-    fn random_is_refused_with_a_reason() {
-        let refused = |body: &str| {
-            let src = format!("surface shader float4 t() {{ {body} }}");
-            let checked = crate::check_source("t.sl", &src, &MemoryLoader::default());
-            assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-            let mut shader = checked.program.shaders[0].clone();
-            crate::opt::prepare(&mut shader);
-            match compile_kernel(&shader, &[], &[], &[], &["result"]) {
-                Ok(_) => panic!("{body} compiled"),
-                Err(d) => format!("{} {:?}", d.message, d.notes),
-            }
-        };
-        let r = refused("float x = random(); return {x, x, x, 1};");
-        assert!(r.contains("random") && r.contains("index"), "{r}");
     }
 }

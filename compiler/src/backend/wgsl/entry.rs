@@ -34,6 +34,10 @@ pub(crate) fn seed_name(shader: &Shader, input: Input, axis: Axis) -> String {
 /// (pixel centres at +0.5), z the depth, w = 1 / clip w.
 pub(crate) const SCREEN_POSITION: &str = "xyz_screen";
 
+/// Pixels per row in the point index `random()` hashes in rendering: the fragment at pixel (x, y)
+/// is point x + 4096 y (below 2^24, so the interpreter's f32 inputs carry it exactly).
+pub const RANDOM_ROW: u32 = 4096;
+
 /// The mesh attributes every vertex stage takes, at locations 0 to 4.
 pub(crate) const GEOMETRY_ATTRIBUTES: [(&str, u32); 5] =
     [("P", 3), ("N", 3), ("uv", 2), ("dPdu", 3), ("dPdv", 3)];
@@ -540,6 +544,19 @@ fn fragment_entry(
         let var = t.mb.private(SCREEN_POSITION, Type::of(Base::Float4));
         let p = t.pointer(var);
         t.store(p, position);
+    }
+    if uses.random {
+        let coord = |t: &mut Translator, i: u32| {
+            let c = t.fb.add(Expression::AccessIndex { base: position, index: i });
+            t.fb.add(Expression::As { expr: c, kind: naga::ScalarKind::Uint, convert: Some(4) })
+        };
+        let (x, y) = (coord(&mut t, 0), coord(&mut t, 1));
+        let row = t.fb.add(Expression::Literal(naga::Literal::U32(RANDOM_ROW)));
+        let y = t.binary(naga::BinaryOperator::Multiply, y, row);
+        let point = t.binary(naga::BinaryOperator::Add, x, y);
+        let var = t.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
+        let p = t.pointer(var);
+        t.store(p, point);
     }
     for (k, c) in crossings.iter().enumerate() {
         let ty = varying_type(t.mb, c.ty);

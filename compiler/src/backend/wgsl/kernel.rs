@@ -143,6 +143,10 @@ pub fn compile_kernel(
     let accept = t.fb.close();
     t.fb.push(Statement::If { condition: past, accept, reject: naga::Block::new() });
 
+    // `random()` hashes the point's index, as the interpreter's default (an input may override).
+    let point = t.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
+    let point = t.pointer(point);
+    t.store(point, index);
     let in_stride = t.fb.add(Expression::Literal(Literal::U32(input_stride)));
     let in_base = t.binary(Op::Multiply, index, in_stride);
     for (v, target) in &ins {
@@ -226,6 +230,9 @@ fn resolve(shader: &Shader, name: &str) -> Option<(Target, Type)> {
         };
         let ty = if ty.base == Base::Point { Type::of(Base::Vector) } else { ty };
         return Some((Target::Seed(input, axis), ty));
+    }
+    if name == crate::backend::cpu::POINT_INDEX {
+        return Some((Target::Private(crate::backend::cpu::POINT_INDEX), Type::of(Base::Uint)));
     }
     if name == super::entry::SCREEN_POSITION {
         return Some((Target::Private(super::entry::SCREEN_POSITION), Type::of(Base::Float4)));

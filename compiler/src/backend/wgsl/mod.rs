@@ -33,6 +33,7 @@ use crate::ir::{Shader, Stmt};
 use crate::source::Span;
 use crate::split::Stages;
 use body::Translator;
+pub use entry::RANDOM_ROW;
 use interface::Interface;
 pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel};
 use module::ModuleBuilder;

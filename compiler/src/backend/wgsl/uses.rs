@@ -16,6 +16,8 @@ pub(crate) struct Uses {
     pub seeds: Vec<(Input, Axis, ExprId)>,
     /// Whether the body reads the fragment's window position (`xyz_screen`).
     pub screen: bool,
+    /// Whether the body calls `random()` (which hashes the point index).
+    pub random: bool,
     seen: FxHashSet<ExprId>,
 }
 
@@ -105,10 +107,9 @@ impl Uses {
                 }
             }
             kind => {
-                if let ExprKind::Builtin(b, _) = kind
-                    && b.name == "xyz_screen"
-                {
-                    self.screen = true;
+                if let ExprKind::Builtin(b, _) = kind {
+                    self.screen |= b.name == "xyz_screen";
+                    self.random |= b.name == "random";
                 }
                 // Two-argument faceforward compares with the geometric normal.
                 if let ExprKind::Builtin(b, args) = kind

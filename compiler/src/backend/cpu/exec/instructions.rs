@@ -99,11 +99,11 @@ impl<F: Real> Machine<F> {
                 let size = self.textures.get(texture as usize).map_or(1, |t| t.size[axis as usize].max(1));
                 self.ints.fill(dst, size);
             }
-            Inst::Random { dst, site } => {
-                let first = self.first_point;
+            Inst::Random { dst, site, point } => {
+                let ints = &self.ints;
                 let d = &mut self.floats.varying[dst.index as usize];
                 for (lane, d) in d.iter_mut().enumerate() {
-                    *d = F::from_f64(random(first.wrapping_add(lane as u32), site));
+                    *d = F::from_f64(random(ints.at(point, lane), site));
                 }
             }
         }

@@ -45,8 +45,6 @@ pub(crate) struct Machine<F> {
     /// Lanes that have left a construct that is still running.
     halted: Mask,
     targets: Vec<Target>,
-    /// The index of the point in lane 0 (what `random()` hashes).
-    pub first_point: u32,
     /// The most iterations one loop may run before the run stops.
     pub budget: u64,
     /// The textures, as the code numbers them.
@@ -88,7 +86,6 @@ impl<F: Real> Machine<F> {
             halted: Mask::none(),
             // Deep enough for any program the front end accepts without reallocating.
             targets: Vec::with_capacity(64),
-            first_point: 0,
             budget,
             textures: Vec::new(),
         }

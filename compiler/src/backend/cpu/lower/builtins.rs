@@ -2,10 +2,10 @@
 //! operations, the sums over the bound lights, and the geometric family (in `geometry`).
 
 use super::expr::pick;
-use super::{Lower, Val};
+use super::{Lower, POINT_INDEX, Val};
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, Reg, Ternary, Unary};
 use crate::diag::{Code as DiagCode, Diagnostic};
-use crate::ir::types::Base;
+use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
 use crate::sema::builtins::Builtin;
 
@@ -101,10 +101,11 @@ impl Lower<'_> {
             }
             "random" => {
                 let n = ret.base.components();
+                let point = self.named_input(POINT_INDEX, Type::of(Base::Uint), false)[0];
                 let regs = (0..n)
                     .map(|_| {
                         self.random_sites += 1;
-                        self.emit.random(self.random_sites)
+                        self.emit.random(self.random_sites, point)
                     })
                     .collect();
                 Val::Float(regs)

@@ -242,9 +242,9 @@ impl Emitter {
         dst
     }
 
-    pub fn random(&mut self, site: u32) -> Reg {
+    pub fn random(&mut self, site: u32, point: Reg) -> Reg {
         let dst = self.temp(true, false);
-        self.push(Inst::Random { dst, site });
+        self.push(Inst::Random { dst, site, point });
         dst
     }
 
@@ -370,7 +370,10 @@ fn relocate_inst(inst: &mut Inst, f: &Files) {
             fix(src, float, f);
             fix(index, false, f);
         }
-        Inst::Random { dst, .. } => fix(dst, true, f),
+        Inst::Random { dst, point, .. } => {
+            fix(dst, true, f);
+            fix(point, false, f);
+        }
         Inst::Texel { dst, x, y, z, .. } => {
             fix(dst, true, f);
             for r in [x, y, z] {

@@ -25,6 +25,10 @@ use crate::sema::globals::Global;
 pub(crate) use emit::{Emitter, Val};
 pub(crate) use stmt::{category_matches, element_type};
 
+/// The input `random()` hashes with its call site: by default each point's index in the
+/// evaluation; a renderer gives the pixel (x + 65536 y), as the GPU computes it.
+pub const POINT_INDEX: &str = "point_index";
+
 /// What the program is compiled for: the decisions that change its code.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Binding {
@@ -289,19 +293,19 @@ impl<'a> Lower<'a> {
         self.slot_val(self.slots.len() - 1)
     }
 
-    /// A caller-supplied float input that is not a predefined variable (`xyz_screen`, the clipping
-    /// range of `depth`), made on first use.
+    /// A caller-supplied input that is not a predefined variable (`xyz_screen`, the clipping
+    /// range of `depth`, the point index `random` hashes), made on first use.
     pub fn named_input(&mut self, name: &str, ty: Type, uniform: bool) -> Vec<Reg> {
         if let Some(slot) = self.slots.iter().find(|s| s.name == name) {
             return slot.regs.clone();
         }
-        let n = layout(ty).map_or(0, |(_, n)| n);
-        let regs = self.emit.fixed_block(true, uniform, n);
+        let (float, n) = layout(ty).unwrap_or((true, 0));
+        let regs = self.emit.fixed_block(float, uniform, n);
         self.slots.push(Slot {
             name: name.to_string(),
             kind: SlotKind::Global,
             ty,
-            float: true,
+            float,
             regs: regs.clone(),
         });
         regs

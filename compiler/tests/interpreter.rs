@@ -227,3 +227,24 @@ fn string_parameters_with_defaults_are_compile_time_values() {
     let out = eval.eval_points(1, &[], &["Ci"]).unwrap();
     assert_eq!(out[0], vec![11.0, 2.0, 3.0]);
 }
+
+#[test]
+fn light_construct_arguments_are_converted_and_counted() {
+    // Integer angles are floats, as for any float argument (this used to reach the lowering as an
+    // integer and panic it).
+    let solar = compile("light sun() { solar(vector(0, 0, 1), 0) { Cl = 1; } }", &Binding::default());
+    let mut eval = Evaluator::<f64>::new(&solar);
+    let out = eval.eval_points(1, &[], &["Cl", "L"]).unwrap();
+    assert_eq!(out[0], vec![1.0, 1.0, 1.0]);
+    assert_eq!(out[1], vec![0.0, 0.0, 1.0]);
+    let binding = Binding { lights: vec![LightBinding::default()], strings: vec![] };
+    compile("surface s() { illuminance(P, N, 1) { Ci += Cl; } }", &binding);
+    // A wrong number of arguments is a diagnostic naming the forms.
+    let checked = patina_compiler::check_source(
+        "bad.sl",
+        "light l() { illuminate(P, vector(0, 0, 1)) { Cl = 1; } }",
+        &MemoryLoader::default(),
+    );
+    let messages: Vec<String> = checked.diagnostics.iter().map(|d| d.message.clone()).collect();
+    assert!(messages.iter().any(|m| m.contains("`illuminate(position, axis, angle)`")), "{messages:?}");
+}

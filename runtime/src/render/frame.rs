@@ -162,9 +162,10 @@ pub fn uniform_bytes(
                     c as u32 * 4
                 };
                 let at = (field.offset + e as u32 * l.element_stride + within) as usize;
+                // Integers arrive as values or as their unsigned bit patterns (the interpreter's
+                // outputs): both wrap to the same 32 bits.
                 let word: [u8; 4] = match l.scalar {
-                    "i32" => (*x as i32).to_le_bytes(),
-                    "u32" => (*x as u32).to_le_bytes(),
+                    "i32" | "u32" => (*x as i64 as u32).to_le_bytes(),
                     _ => (*x as f32).to_le_bytes(),
                 };
                 if let Some(slot) = bytes.get_mut(at..at + 4) {

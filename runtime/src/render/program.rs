@@ -217,7 +217,9 @@ fn evaluate_params(
     spaces: &[(String, Mat4)],
     extra: &[String],
 ) -> Result<Vec<(String, Vec<f64>)>, RenderError> {
-    let mut eval = Evaluator::<f32>::new(program);
+    // In f64, which holds every 32-bit integer exactly (the values are rounded to f32 where
+    // they are used as floats).
+    let mut eval = Evaluator::<f64>::new(program);
     set_spaces(&mut eval, program, spaces);
     for (name, value) in &loaded.params {
         eval.set(name, value).map_err(|e| RenderError::Input(format!("parameter `{name}`: {e}")))?;

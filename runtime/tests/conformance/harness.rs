@@ -41,7 +41,7 @@ impl Tol {
         Tol::Near { abs, rel }
     }
 
-    fn accepts(self, gpu: f32, cpu: f32) -> bool {
+    pub(crate) fn accepts(self, gpu: f32, cpu: f32) -> bool {
         if gpu.to_bits() == cpu.to_bits() || (gpu.is_nan() && cpu.is_nan()) {
             return true;
         }
@@ -58,7 +58,7 @@ impl Tol {
 }
 
 /// The distance in units in the last place between two finite floats.
-fn ulps(a: f32, b: f32) -> u64 {
+pub(crate) fn ulps(a: f32, b: f32) -> u64 {
     let key = |x: f32| {
         let i = x.to_bits() as i32;
         // Map the bits to a line on which adjacent floats are adjacent integers.

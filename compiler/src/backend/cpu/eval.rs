@@ -163,10 +163,18 @@ pub struct Evaluator<'p, F> {
     program: &'p CpuProgram,
     machine: Machine<F>,
     /// Per slot: the value set with [`Evaluator::set`] (used for every point without a column).
-    set: Vec<Option<Vec<F>>>,
+    set: Vec<Option<Set<F>>>,
     /// Per slot: whether a column is given in the current call (scratch, kept to avoid
     /// allocating per call).
     given: Vec<bool>,
+}
+
+/// A value given with [`Evaluator::set`], kept in its register file's form: integers as their
+/// 32 bits (an f32 could not hold them beyond 2^24).
+#[derive(Clone, Debug)]
+enum Set<F> {
+    Floats(Vec<F>),
+    Ints(Vec<u32>),
 }
 
 /// The iteration budget of each loop, unless changed with [`Evaluator::set_budget`].
@@ -189,8 +197,8 @@ impl<'p, F: Real> Evaluator<'p, F> {
         let mut e = Evaluator { program, machine, set: vec![None; n], given: vec![false; n] };
         for (i, slot) in program.lowered.slots.iter().enumerate() {
             let default = match (&slot.kind, slot.name.as_str()) {
-                (SlotKind::Global, "Cs" | "Os") => Some(vec![F::ONE; 3]),
-                (SlotKind::Space, _) => Some(identity_pair()),
+                (SlotKind::Global, "Cs" | "Os") => Some(Set::Floats(vec![F::ONE; 3])),
+                (SlotKind::Space, _) => Some(Set::Floats(identity_pair())),
                 _ => None,
             };
             e.set[i] = default;
@@ -222,13 +230,17 @@ impl<'p, F: Real> Evaluator<'p, F> {
     pub fn set(&mut self, name: &str, values: &[f64]) -> Result<(), EvalError> {
         let id = self.program.slot(name).ok_or_else(|| EvalError::UnknownName(name.to_string()))?;
         let slot = &self.program.lowered.slots[id.0];
-        let values: Vec<F> = if slot.kind == SlotKind::Space {
+        let values = if slot.kind == SlotKind::Space {
             check_size(name, 16, values.len())?;
             let inverse = invert4(values);
-            values.iter().chain(&inverse).map(|x| F::from_f64(*x)).collect()
-        } else {
+            Set::Floats(values.iter().chain(&inverse).map(|x| F::from_f64(*x)).collect())
+        } else if slot.float {
             check_size(name, slot.regs.len(), values.len())?;
-            values.iter().map(|x| F::from_f64(*x)).collect()
+            Set::Floats(values.iter().map(|x| F::from_f64(*x)).collect())
+        } else {
+            // Integers as given, or as their unsigned bit pattern (what outputs give back).
+            check_size(name, slot.regs.len(), values.len())?;
+            Set::Ints(values.iter().map(|x| *x as i64 as u32).collect())
         };
         self.set[id.0] = Some(values);
         Ok(())
@@ -305,13 +317,12 @@ impl<'p, F: Real> Evaluator<'p, F> {
                 }
                 continue;
             }
-            let value = self.set[i].as_deref();
             for (c, r) in slot.regs.iter().enumerate() {
-                let x = value.map_or(F::ZERO, |v| v[c]);
-                if slot.float {
-                    self.machine.floats.fill(*r, x);
-                } else {
-                    self.machine.ints.fill(*r, x.to_f64() as i64 as u32);
+                match &self.set[i] {
+                    Some(Set::Floats(v)) if slot.float => self.machine.floats.fill(*r, v[c]),
+                    Some(Set::Ints(v)) if !slot.float => self.machine.ints.fill(*r, v[c]),
+                    _ if slot.float => self.machine.floats.fill(*r, F::ZERO),
+                    _ => self.machine.ints.fill(*r, 0),
                 }
             }
         }

@@ -111,14 +111,6 @@ impl Uses {
                     self.screen |= b.name == "xyz_screen";
                     self.random |= b.name == "random";
                 }
-                // Two-argument faceforward compares with the geometric normal.
-                if let ExprKind::Builtin(b, args) = kind
-                    && b.name == "faceforward"
-                    && args.len() == 2
-                    && let Some(g) = crate::sema::globals::lookup("Ng", shader.kind, shader.stanford)
-                {
-                    self.global(g);
-                }
                 kind.for_each_operand(|o| self.expr(shader, o))
             }
         }

@@ -211,6 +211,20 @@ impl Lowerer<'_> {
                         }
                     }
                 }
+                // `faceforward(N, I)` compares with the geometric normal: make that argument
+                // explicit, so that rates, derivatives and every backend see it.
+                if b.name == "faceforward"
+                    && converted.len() == 2
+                    && let Some(ng) = crate::sema::globals::lookup("Ng", self.kind, self.stanford)
+                {
+                    let ng_expr = self.push_expr(ExprKind::Global(ng), Type::of(ng.ty), span);
+                    let ng_expr = self.coerce(ng_expr, b.ret, "the reference normal")?;
+                    let types = [b.ret, Type::of(crate::ir::types::Base::Vector), b.ret];
+                    if let Some(three) = crate::sema::builtins::find("faceforward", &types) {
+                        converted.push(ng_expr);
+                        return Some(self.push_expr(ExprKind::Builtin(three, converted), three.ret, span));
+                    }
+                }
                 Some(self.push_expr(ExprKind::Builtin(b, converted), b.ret, span))
             }
         }

@@ -235,7 +235,8 @@ impl Lowerer<'_> {
                     self.error(d);
                     return;
                 }
-                let args = self.args(args, out);
+                let args =
+                    self.args(args, out).and_then(|a| self.light_args(a, LightForm::Illuminance, s.span));
                 let saved = std::mem::replace(&mut self.light_loop, LightLoop::Illuminance);
                 let body = self.sub_block(body);
                 self.light_loop = saved;
@@ -255,7 +256,8 @@ impl Lowerer<'_> {
                     ));
                     return;
                 }
-                let args = self.args(args, out);
+                let form = if solar { LightForm::Solar } else { LightForm::Illuminate };
+                let args = self.args(args, out).and_then(|a| self.light_args(a, form, s.span));
                 let body = self.sub_block(body);
                 if let Some(args) = args {
                     out.push(Stmt::Emit { solar, args, body });
@@ -277,6 +279,54 @@ impl Lowerer<'_> {
     }
 
     /// Lowers arguments of a statement (`illuminance(...)`), each without an expected type.
+    /// The arguments of `illuminance`, `illuminate` or `solar`, converted to the types the
+    /// construct takes (RenderMan's: `[string category,] point position [, vector axis, float
+    /// angle]`, `point position [, vector axis, float angle]`, `[vector axis, float angle]`).
+    fn light_args(
+        &mut self,
+        args: Vec<ExprId>,
+        form: LightForm,
+        span: crate::source::Span,
+    ) -> Option<Vec<ExprId>> {
+        let (point, vector, float) = (Type::of(Base::Point), Type::of(Base::Vector), Type::FLOAT);
+        let category =
+            form == LightForm::Illuminance && args.first().is_some_and(|a| self.ty(*a).base == Base::String);
+        let rest = if category { &args[1..] } else { &args[..] };
+        let expected: Option<&[Type]> = match (form, rest.len()) {
+            (LightForm::Illuminance | LightForm::Illuminate, 1) => Some(&[point]),
+            (LightForm::Illuminance | LightForm::Illuminate, 3) => Some(&[point, vector, float]),
+            (LightForm::Solar, 0) => Some(&[]),
+            (LightForm::Solar, 2) => Some(&[vector, float]),
+            _ => None,
+        };
+        let Some(expected) = expected else {
+            let forms = match form {
+                LightForm::Illuminance => {
+                    "`illuminance([category,] position)` or `illuminance([category,] position, axis, angle)`"
+                }
+                LightForm::Illuminate => "`illuminate(position)` or `illuminate(position, axis, angle)`",
+                LightForm::Solar => "`solar()` or `solar(axis, angle)`",
+            };
+            self.error(
+                Diagnostic::error(
+                    Code::NoMatchingOverload,
+                    format!("expected {forms}"),
+                    span,
+                    "these arguments",
+                )
+                .with_help("the angle is a cone half-angle in radians around the axis"),
+            );
+            return None;
+        };
+        let what = ["the position", "the axis", "the angle"];
+        let what = if form == LightForm::Solar { &what[1..] } else { &what[..] };
+        let mut out: Vec<ExprId> = if category { vec![args[0]] } else { Vec::new() };
+        for ((arg, ty), what) in rest.iter().zip(expected).zip(what) {
+            out.push(self.coerce(*arg, *ty, what)?);
+        }
+        Some(out)
+    }
+
     fn args(&mut self, args: &[ast::Expr], out: &mut Block) -> Option<Vec<ExprId>> {
         let lowered: Vec<Option<ExprId>> = args.iter().map(|a| self.expr(a, None, out)).collect();
         lowered.into_iter().collect()
@@ -436,4 +486,12 @@ impl Lowerer<'_> {
         }
         self.declared_rate(q, false)
     }
+}
+
+/// Which light construct's arguments are checked.
+#[derive(Copy, Clone, PartialEq, Eq)]
+enum LightForm {
+    Illuminance,
+    Illuminate,
+    Solar,
 }

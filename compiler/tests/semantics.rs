@@ -399,6 +399,31 @@ fn recursion() {
     insta::assert_snapshot!("recursion", text);
 }
 
+#[test]
+fn overloads_may_call_each_other() {
+    // Recursion is a definition calling itself, not a name: a library writes one overload in
+    // terms of another.
+    let (codes, text) = run(&lines(&[
+        "float warp(float x) { return x * x; }",
+        "float warp(point p) { return warp(xcomp(p)) + warp(ycomp(p)); }",
+        "surface s() { Ci = warp(P); }",
+    ]));
+    assert!(codes.is_empty(), "{text}");
+}
+
+#[test]
+fn functions_no_shader_calls_see_the_files_variables() {
+    // A library function reading a table declared at file level is checked with the table in
+    // scope, as it would be inlined.
+    let (codes, text) = run(&lines(&[
+        "constant float table[4] = {0.5, 1.5, 2.5, 3.5};",
+        "float lookup(int i) { return table[i & 3]; }",
+        "float broken(int i) { return missing[i]; }",
+    ]));
+    assert_eq!(codes, ["E0501"], "{text}");
+    assert!(text.contains("missing") && !text.contains("`table`"), "{text}");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Shader kinds and light loops (E0511, E0512, E0513)
 

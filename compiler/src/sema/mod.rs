@@ -83,7 +83,7 @@ pub fn check(module: &ast::Module, diags: &mut Diagnostics) -> Program {
             .iter()
             .any(|i| matches!(i, Item::Shader(s) if matches!(s.style, ast::ShaderStyle::RenderMan)));
     for f in unused {
-        lower::check_function(f, stanford, &table, &mut shared, diags);
+        lower::check_function(f, stanford, &globals, &table, &mut shared, diags);
     }
     program
 }

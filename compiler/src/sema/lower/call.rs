@@ -148,7 +148,8 @@ impl Lowerer<'_> {
         let chosen = self.resolve(callee, &candidates, &types, expected, span)?;
         match chosen {
             Candidate::User(f) => {
-                if self.frames.iter().any(|frame| frame.name == f.name.name) {
+                // The same definition, not just the same name: overloads may call each other.
+                if self.frames.iter().any(|frame| frame.definition == f.name.span) {
                     self.error(
                         Diagnostic::error(
                             Code::Recursion,

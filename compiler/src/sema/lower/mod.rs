@@ -33,6 +33,8 @@ enum LightLoop {
 /// A function being inlined.
 struct Frame {
     name: SmolStr,
+    /// The definition's name, which identifies the function among its overloads.
+    definition: Span,
     /// Where the callee's result goes, for non-void functions.
     result: Option<LocalId>,
     ret: Type,
@@ -139,10 +141,12 @@ pub(super) fn lower_shader(
 }
 
 /// Checks a function's body on its own, for functions no shader calls (their errors would
-/// otherwise go unreported).
+/// otherwise go unreported). It sees the file's variables, as it would inlined into a shader
+/// (errors in their declarations are reported once, however many times they are declared).
 pub(super) fn check_function(
     f: &ast::FunctionDef,
     stanford: bool,
+    globals: &[&ast::VarDecl],
     functions: &FunctionTable<'_>,
     shared: &mut Shared,
     diags: &mut Diagnostics,
@@ -152,6 +156,9 @@ pub(super) fn check_function(
     let kind = f.context.map_or(ShaderKind::Surface, |c| c.0);
     let mut l = Lowerer::new(diags, shared, functions, kind, stanford, Type::VOID);
     let mut body = Vec::new();
+    for decl in globals {
+        l.declaration(decl, &mut body);
+    }
     let args: Vec<Option<ExprId>> = f
         .params
         .iter()

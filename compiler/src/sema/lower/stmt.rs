@@ -446,7 +446,15 @@ impl Lowerer<'_> {
             }
             self.bind(&p.name, id);
         }
-        self.frames.push(Frame { name: f.name.name.clone(), result, ret, scope_base, outer, call_span });
+        self.frames.push(Frame {
+            name: f.name.name.clone(),
+            definition: f.name.span,
+            result,
+            ret,
+            scope_base,
+            outer,
+            call_span,
+        });
         let stmts = &f.body.stmts;
         for s in stmts {
             self.stmt(s, &mut body);

@@ -1,0 +1,179 @@
+//! Expressions to naga: variables, literals, indexing (clamped), conversions' callers, seeds.
+
+use naga::{Expression, Literal as NLit, ScalarKind, UnaryOperator};
+use smol_str::SmolStr;
+
+use super::{Translator, Value};
+use crate::diag::Diagnostic;
+use crate::ir::types::{Base, Type};
+use crate::ir::{BinaryOp, ExprId, ExprKind, Literal, UnaryOp};
+use crate::source::Span as SrcSpan;
+
+impl Translator<'_> {
+    /// The value of an expression (computed once per statement and light).
+    pub fn expr(&mut self, id: ExprId) -> Result<Value, Diagnostic> {
+        if let Some(v) = self.memo.get(&(id, self.light)) {
+            return Ok(*v);
+        }
+        let v = stacker::maybe_grow(64 * 1024, 1024 * 1024, || self.expr_uncached(id))?;
+        self.memo.insert((id, self.light), v);
+        Ok(v)
+    }
+
+    pub(crate) fn expr_uncached(&mut self, id: ExprId) -> Result<Value, Diagnostic> {
+        let e = self.shader.expr(id);
+        let (ty, span) = (e.ty, e.span);
+        Ok(match &e.kind {
+            ExprKind::Literal(l) => self.literal(l, span)?,
+            ExprKind::Local(l) => {
+                if self.shader.local(*l).ty.base == Base::String {
+                    return Err(self.error(span, "a string used as a value"));
+                }
+                let g = self.local_var(*l);
+                let p = self.pointer(g);
+                self.load(p)
+            }
+            ExprKind::Global(g) => {
+                let var = self.global_var(g.name, Type::of(g.ty), g.perlight);
+                let p = self.pointer(var);
+                self.load(p)
+            }
+            ExprKind::Unary(op, a) => {
+                let v = self.expr(*a)?;
+                let op = match (op, self.shader.expr(*a).ty.base) {
+                    (UnaryOp::Neg, _) => UnaryOperator::Negate,
+                    (UnaryOp::Not, _) => UnaryOperator::LogicalNot,
+                    (UnaryOp::BitNot, _) => UnaryOperator::BitwiseNot,
+                };
+                self.fb.add(Expression::Unary { op, expr: v })
+            }
+            ExprKind::Binary(op, a, b) if self.shader.expr(*a).ty.base == Base::String => {
+                // Strings are known at compile time: so is their comparison.
+                let (Some(x), Some(y)) = (self.string_value(*a), self.string_value(*b)) else {
+                    return Err(self.error(span, "a comparison of strings not known at compile time"));
+                };
+                let equal = x == y;
+                let result = if *op == BinaryOp::Eq { equal } else { !equal };
+                self.fb.add(Expression::Literal(NLit::Bool(result)))
+            }
+            ExprKind::Binary(op, a, b) => {
+                let (ta, tb) = (self.shader.expr(*a).ty, self.shader.expr(*b).ty);
+                let (va, vb) = (self.expr(*a)?, self.expr(*b)?);
+                self.binary_op(*op, va, ta, vb, tb, span)?
+            }
+            ExprKind::Convert(a) => {
+                let from = self.shader.expr(*a).ty;
+                let v = self.expr(*a)?;
+                self.convert(v, from, ty, span)?
+            }
+            ExprKind::Construct(parts) => {
+                let vals: Vec<Value> = parts.iter().map(|p| self.expr(*p)).collect::<Result<_, _>>()?;
+                self.construct(&vals, ty)
+            }
+            ExprKind::FromSpace { space, value } => {
+                let v = self.expr(*value)?;
+                let from = self.shader.expr(*value).ty;
+                self.space_to_current(space, v, from, span)?
+            }
+            ExprKind::Index(base, index) => {
+                let bt = self.shader.expr(*base).ty;
+                if let Some(c) = self.constant_index(*index, bt) {
+                    let v = self.expr(*base)?;
+                    self.fb.add(Expression::AccessIndex { base: v, index: c })
+                } else if bt.is_array() {
+                    // Arrays are indexed through a pointer (naga indexes array values only by
+                    // constants): the variable's own, or a temporary's.
+                    let pointer = match &self.shader.expr(*base).kind {
+                        ExprKind::Local(l) => {
+                            let g = self.local_var(*l);
+                            self.pointer(g)
+                        }
+                        _ => {
+                            let v = self.expr(*base)?;
+                            let name = format!("{}array_{}", self.prefix, base.0);
+                            let g = self.mb.private(&name, bt);
+                            let p = self.pointer(g);
+                            self.store(p, v);
+                            self.pointer(g)
+                        }
+                    };
+                    let i = self.index(*index, bt)?;
+                    let element = self.fb.add(Expression::Access { base: pointer, index: i });
+                    self.load(element)
+                } else {
+                    let v = self.expr(*base)?;
+                    let i = self.index(*index, bt)?;
+                    self.fb.add(Expression::Access { base: v, index: i })
+                }
+            }
+            ExprKind::Select(c, a, b) => {
+                let c = self.condition(*c)?;
+                let (a, b) = (self.expr(*a)?, self.expr(*b)?);
+                if ty.is_array() || matches!(ty.base, Base::Matrix3 | Base::Matrix4) {
+                    return Err(self.error(span, "`?:` on arrays or matrices"));
+                }
+                self.fb.add(Expression::Select { condition: c, accept: a, reject: b })
+            }
+            ExprKind::Builtin(b, args) => self.builtin(b, args, id)?,
+            ExprKind::Seed(input, axis) => {
+                let name = crate::backend::wgsl::entry::seed_name(self.shader, *input, *axis);
+                let g = self.mb.private(&format!("{}{name}", self.prefix), ty);
+                let p = self.pointer(g);
+                self.load(p)
+            }
+        })
+    }
+
+    pub(crate) fn constant_index(&self, index: ExprId, ty: Type) -> Option<u32> {
+        let len = ty.array.unwrap_or(match ty.base {
+            Base::Matrix3 => 3,
+            Base::Matrix4 => 4,
+            b => b.components(),
+        });
+        let i = match &self.shader.expr(index).kind {
+            ExprKind::Literal(Literal::Int(i)) => i64::from(*i),
+            ExprKind::Literal(Literal::Uint(u)) => i64::from(*u),
+            _ => return None,
+        };
+        Some(i.clamp(0, i64::from(len.max(1) - 1)) as u32)
+    }
+
+    pub(crate) fn literal(&mut self, l: &Literal, span: SrcSpan) -> Result<Value, Diagnostic> {
+        Ok(match l {
+            Literal::Float(x) => self.float(*x),
+            Literal::Int(i) => self.fb.add(Expression::Literal(NLit::I32(*i))),
+            Literal::Uint(u) => self.fb.add(Expression::Literal(NLit::U32(*u))),
+            Literal::Bool(b) => self.fb.add(Expression::Literal(NLit::Bool(*b))),
+            Literal::String(_) => return Err(self.error(span, "a string used as a value")),
+        })
+    }
+
+    /// An `f32` constant; infinities and NaN (which WGSL literals cannot spell) by bit pattern.
+    pub fn float(&mut self, x: f64) -> Value {
+        let f = x as f32;
+        if f.is_finite() {
+            self.fb.add(Expression::Literal(NLit::F32(f)))
+        } else {
+            let bits = self.fb.add(Expression::Literal(NLit::U32(f.to_bits())));
+            self.fb.add(Expression::As { expr: bits, kind: ScalarKind::Float, convert: None })
+        }
+    }
+
+    /// The string a string-typed expression denotes (strings are known at compile time).
+    pub fn string_value(&self, id: ExprId) -> Option<SmolStr> {
+        match &self.shader.expr(id).kind {
+            ExprKind::Literal(Literal::String(s)) => Some(s.clone()),
+            ExprKind::Local(l) => {
+                let local = self.shader.local(*l);
+                if let Some((_, v)) = self.strings.iter().find(|(n, _)| *n == local.name) {
+                    return Some(SmolStr::new(v));
+                }
+                match local.kind {
+                    crate::ir::LocalKind::Param { default: Some(d), .. } => self.string_value(d),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    }
+}

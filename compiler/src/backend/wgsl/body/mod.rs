@@ -1,0 +1,406 @@
+//! A stage's body (or a light shader's) to naga: statements and expressions.
+//!
+//! Every language variable is a private (per-invocation) module variable, so inlined function
+//! bodies can become naga functions of their own (their `return` is then naga's `return`), and
+//! the entry points fill inputs and read outputs around one call of the body. Expressions are
+//! translated per statement (a statement's subexpressions are shared; the next statement reads
+//! variables afresh), as the interpreter does.
+
+use naga::{
+    BinaryOperator, Expression, Handle, Literal as NLit, MathFunction, ScalarKind, Span, Statement,
+    UnaryOperator,
+};
+use rustc_hash::FxHashMap;
+use smol_str::SmolStr;
+
+mod expr;
+mod operators;
+
+use super::func::FnBuilder;
+use super::module::{ModuleBuilder, sanitize};
+use crate::backend::cpu::LightBinding;
+use crate::diag::{Code, Diagnostic};
+use crate::ir::types::{Base, Type};
+use crate::ir::{ExprId, LocalId, Place, Shader, Stmt};
+use crate::source::Span as SrcSpan;
+
+/// Translates one program's statements into naga functions of a module.
+pub(crate) struct Translator<'a> {
+    pub mb: &'a mut ModuleBuilder,
+    pub shader: &'a Shader,
+    /// Prepended to every variable name (`l0_` for the first light).
+    pub prefix: String,
+    /// The bound lights (for `illuminance` and the light sums).
+    pub lights: &'a [LightBinding],
+    /// Values of string parameters.
+    pub strings: &'a [(String, String)],
+    pub fb: FnBuilder,
+    /// The light the code being translated runs for (in an unrolled light loop).
+    pub light: Option<usize>,
+    /// The bound light whose shader this is (`None` for the surface), for its spaces.
+    pub owner: Option<usize>,
+    memo: FxHashMap<(ExprId, Option<usize>), Handle<Expression>>,
+    /// The `random()` call sites numbered so far (in the interpreter's order).
+    pub random_sites: u32,
+    names: FxHashMap<LocalId, String>,
+    functions: u32,
+}
+
+/// A value with its language type, for the helpers that dispatch on types.
+pub(crate) type Value = Handle<Expression>;
+
+impl<'a> Translator<'a> {
+    pub fn new(
+        mb: &'a mut ModuleBuilder,
+        shader: &'a Shader,
+        prefix: &str,
+        lights: &'a [LightBinding],
+        strings: &'a [(String, String)],
+        function: &str,
+    ) -> Self {
+        let names = variable_names(shader, prefix);
+        Translator {
+            mb,
+            shader,
+            prefix: prefix.to_string(),
+            lights,
+            strings,
+            fb: FnBuilder::new(function),
+            light: None,
+            owner: None,
+            memo: FxHashMap::default(),
+            random_sites: 0,
+            names,
+            functions: 0,
+        }
+    }
+
+    pub fn error(&self, span: SrcSpan, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::error(Code::Internal, message, span, "here")
+            .with_help("the WGSL backend cannot translate this yet; the CPU interpreter can run it")
+    }
+
+    // ---------------------------------------------------------------------------------------------
+    // Variables.
+
+    /// The private variable holding local `l` (per light for per-light locals).
+    pub fn local_var(&mut self, l: LocalId) -> Handle<naga::GlobalVariable> {
+        let local = self.shader.local(l);
+        let mut name = self.names[&l].clone();
+        if local.rate.perlight {
+            name = format!("{name}_L{}", self.light.unwrap_or(0));
+        }
+        self.mb.private(&name, local.ty)
+    }
+
+    /// The private variable holding predefined variable `name` (per light for per-light ones).
+    pub fn global_var(&mut self, name: &str, ty: Type, perlight: bool) -> Handle<naga::GlobalVariable> {
+        let mut full = format!("{}{}", self.prefix, sanitize(name));
+        if perlight {
+            full = format!("{full}_L{}", self.light.unwrap_or(0));
+        }
+        self.mb.private(&full, ty)
+    }
+
+    /// A pointer expression to a private variable.
+    pub fn pointer(&mut self, g: Handle<naga::GlobalVariable>) -> Value {
+        self.fb.add(Expression::GlobalVariable(g))
+    }
+
+    pub fn load(&mut self, pointer: Value) -> Value {
+        self.fb.add(Expression::Load { pointer })
+    }
+
+    pub fn store(&mut self, pointer: Value, value: Value) {
+        self.fb.push(Statement::Store { pointer, value });
+    }
+
+    // ---------------------------------------------------------------------------------------------
+    // Statements.
+
+    pub fn block(&mut self, block: &[Stmt]) -> Result<(), Diagnostic> {
+        for s in block {
+            self.statement(s)?;
+        }
+        Ok(())
+    }
+
+    pub(crate) fn statement(&mut self, stmt: &Stmt) -> Result<(), Diagnostic> {
+        if self.light.is_none() && self.statement_is_perlight(stmt) {
+            for k in 0..self.lights.len() {
+                self.light = Some(k);
+                let r = self.statement(stmt);
+                self.light = None;
+                r?;
+            }
+            return Ok(());
+        }
+        self.memo.clear();
+        match stmt {
+            Stmt::Store { place, value, .. } => {
+                let v = self.expr(*value)?;
+                let p = self.place(place)?;
+                self.store(p, v);
+            }
+            Stmt::Eval(id) => {
+                self.expr(*id)?;
+            }
+            Stmt::If { cond, then, otherwise } => {
+                let c = self.condition(*cond)?;
+                self.fb.open();
+                self.block(then)?;
+                let accept = self.fb.close();
+                self.fb.open();
+                self.block(otherwise)?;
+                let reject = self.fb.close();
+                self.fb.push(Statement::If { condition: c, accept, reject });
+            }
+            Stmt::Loop { cond, body, step, .. } => {
+                self.fb.open();
+                if let Some(c) = cond {
+                    self.memo.clear();
+                    let c = self.condition(*c)?;
+                    let not = self.fb.add(Expression::Unary { op: UnaryOperator::LogicalNot, expr: c });
+                    self.fb.open();
+                    self.fb.push(Statement::Break);
+                    let accept = self.fb.close();
+                    self.fb.push(Statement::If { condition: not, accept, reject: naga::Block::new() });
+                }
+                self.block(body)?;
+                let body = self.fb.close();
+                self.fb.open();
+                self.block(step)?;
+                let continuing = self.fb.close();
+                self.fb.push(Statement::Loop { body, continuing, break_if: None });
+            }
+            Stmt::Break(1) => self.fb.push(Statement::Break),
+            Stmt::Continue(1) => self.fb.push(Statement::Continue),
+            Stmt::Break(_) | Stmt::Continue(_) => {
+                return Err(self.error(self.shader.span, "`break` or `continue` out of more than one loop"));
+            }
+            Stmt::Return => self.fb.push(Statement::Return { value: None }),
+            Stmt::Inline { function, body, .. } => self.inline(function, body)?,
+            Stmt::Illuminance { args, body } => self.illuminance(args, body)?,
+            Stmt::Emit { solar, args, body } => self.emission(*solar, args, body)?,
+        }
+        Ok(())
+    }
+
+    /// An inlined call becomes a naga function of its own, so that its `return` is naga's.
+    pub(crate) fn inline(&mut self, function: &SmolStr, body: &[Stmt]) -> Result<(), Diagnostic> {
+        self.functions += 1;
+        let name = format!("{}{}_{}", self.prefix, sanitize(function), self.functions);
+        let outer = std::mem::replace(&mut self.fb, FnBuilder::new(&name));
+        let memo = std::mem::take(&mut self.memo);
+        let result = self.block(body);
+        let inner = std::mem::replace(&mut self.fb, outer);
+        self.memo = memo;
+        result?;
+        let handle = self.mb.module.functions.append(inner.finish(), Span::UNDEFINED);
+        self.fb.push(Statement::Call { function: handle, arguments: Vec::new(), result: None });
+        Ok(())
+    }
+
+    /// Whether a statement computes a per-light value outside a light loop (Stanford style).
+    pub(crate) fn statement_is_perlight(&self, stmt: &Stmt) -> bool {
+        let perlight = |id: &ExprId| self.shader.expr(*id).rate.perlight;
+        let place_perlight = |mut p: &Place| loop {
+            match p {
+                Place::Local(l) => return self.shader.local(*l).rate.perlight,
+                Place::Global(g) => return g.perlight,
+                Place::Index(inner, _) => p = inner,
+            }
+        };
+        match stmt {
+            Stmt::Store { place, value, .. } => place_perlight(place) || perlight(value),
+            Stmt::Eval(id) => perlight(id),
+            Stmt::If { cond, .. } => perlight(cond),
+            Stmt::Loop { cond, .. } => cond.as_ref().is_some_and(perlight),
+            _ => false,
+        }
+    }
+
+    /// A pointer to the place a store writes (indices clamped into range).
+    pub(crate) fn place(&mut self, place: &Place) -> Result<Value, Diagnostic> {
+        match place {
+            Place::Local(l) => {
+                let g = self.local_var(*l);
+                Ok(self.pointer(g))
+            }
+            Place::Global(g) => {
+                let var = self.global_var(g.name, Type::of(g.ty), g.perlight);
+                Ok(self.pointer(var))
+            }
+            Place::Index(inner, index) => {
+                let ty = place_type(self.shader, inner);
+                let base = self.place(inner)?;
+                let i = self.index(*index, ty)?;
+                Ok(self.fb.add(Expression::Access { base, index: i }))
+            }
+        }
+    }
+
+    /// An index into a value of type `ty`, as a `u32` clamped to the valid range (constant
+    /// indices in range are used as they are).
+    pub(crate) fn index(&mut self, index: ExprId, ty: Type) -> Result<Value, Diagnostic> {
+        let len = match ty.array {
+            Some(n) => n,
+            None => match ty.base {
+                Base::Matrix3 => 3,
+                Base::Matrix4 => 4,
+                b => b.components(),
+            },
+        };
+        let signed = self.shader.expr(index).ty.base == Base::Int;
+        let i = self.expr(index)?;
+        let i = if signed {
+            let zero = self.fb.add(Expression::Literal(NLit::I32(0)));
+            let m = self.math2(MathFunction::Max, i, zero);
+            self.fb.add(Expression::As { expr: m, kind: ScalarKind::Uint, convert: Some(4) })
+        } else {
+            i
+        };
+        let last = self.fb.add(Expression::Literal(NLit::U32(len.max(1) - 1)));
+        Ok(self.math2(MathFunction::Min, i, last))
+    }
+
+    /// A condition as a naga `bool`.
+    pub fn condition(&mut self, id: ExprId) -> Result<Value, Diagnostic> {
+        self.expr(id)
+    }
+
+    // ---------------------------------------------------------------------------------------------
+    // Lights.
+
+    /// `illuminance`: the body once per bound non-ambient light of the category, inside its cone.
+    pub(crate) fn illuminance(&mut self, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
+        let (category, rest) = match args.first().map(|a| self.shader.expr(*a).ty.base) {
+            Some(Base::String) => (self.string_value(args[0]), &args[1..]),
+            _ => (None, args),
+        };
+        for k in 0..self.lights.len() {
+            let light = &self.lights[k];
+            if light.ambient || category.as_ref().is_some_and(|c| !category_matches(c, &light.categories)) {
+                continue;
+            }
+            self.light = Some(k);
+            self.memo.clear();
+            let cone = match rest {
+                [_, axis, angle] => {
+                    let l = self.global_value("L")?;
+                    let axis = self.expr(*axis)?;
+                    let angle = self.expr(*angle)?;
+                    Some(self.inside_cone(l, axis, angle))
+                }
+                _ => None,
+            };
+            self.fb.open();
+            let r = self.block(body);
+            let inner = self.fb.close();
+            self.light = None;
+            r?;
+            match cone {
+                Some(c) => {
+                    self.fb.push(Statement::If { condition: c, accept: inner, reject: naga::Block::new() })
+                }
+                None => self.fb.push(Statement::Block(inner)),
+            }
+        }
+        Ok(())
+    }
+
+    /// `illuminate`/`solar` in a light shader: sets `L` (from the light to `Ps`) and runs the body
+    /// where the point is inside the cone.
+    pub(crate) fn emission(&mut self, solar: bool, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
+        self.memo.clear();
+        let vals: Vec<Value> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
+        let l_var = self.global_var("L", Type::of(Base::Vector), false);
+        let direction = if solar {
+            match vals.first() {
+                Some(axis) => *axis,
+                None => {
+                    let p = self.pointer(l_var);
+                    self.load(p)
+                }
+            }
+        } else {
+            let ps = self.global_value("Ps")?;
+            self.binary(BinaryOperator::Subtract, ps, vals[0])
+        };
+        let p = self.pointer(l_var);
+        self.store(p, direction);
+        let (axis, angle) = if solar { (vals.first(), vals.get(1)) } else { (vals.get(1), vals.get(2)) };
+        let cone = match (axis, angle) {
+            (Some(&axis), Some(&angle)) => Some(self.inside_cone(direction, axis, angle)),
+            _ => None,
+        };
+        self.fb.open();
+        self.block(body)?;
+        let inner = self.fb.close();
+        match cone {
+            Some(c) => {
+                self.fb.push(Statement::If { condition: c, accept: inner, reject: naga::Block::new() })
+            }
+            None => self.fb.push(Statement::Block(inner)),
+        }
+        Ok(())
+    }
+
+    /// `dot(l, axis) >= cos(angle) * sqrt(dot(l, l) * dot(axis, axis))`, as the interpreter.
+    pub(crate) fn inside_cone(&mut self, l: Value, axis: Value, angle: Value) -> Value {
+        let dot = self.math2(MathFunction::Dot, l, axis);
+        let ll = self.math2(MathFunction::Dot, l, l);
+        let aa = self.math2(MathFunction::Dot, axis, axis);
+        let lengths = self.binary(BinaryOperator::Multiply, ll, aa);
+        let lengths = self.math1(MathFunction::Sqrt, lengths);
+        let cos = self.math1(MathFunction::Cos, angle);
+        let bound = self.binary(BinaryOperator::Multiply, cos, lengths);
+        self.binary(BinaryOperator::GreaterEqual, dot, bound)
+    }
+
+    /// The value of a predefined variable of this shader by name.
+    pub fn global_value(&mut self, name: &str) -> Result<Value, Diagnostic> {
+        match crate::sema::globals::lookup(name, self.shader.kind, self.shader.stanford) {
+            Some(g) => {
+                let var = self.global_var(g.name, Type::of(g.ty), g.perlight);
+                let p = self.pointer(var);
+                Ok(self.load(p))
+            }
+            None => Err(self.error(self.shader.span, format!("this shader has no `{name}`"))),
+        }
+    }
+}
+
+/// The private variable name of every local of `shader`: its source name, with the local's number
+/// when the name is used twice, after `prefix`.
+pub(crate) fn variable_names(shader: &Shader, prefix: &str) -> FxHashMap<LocalId, String> {
+    let mut count: FxHashMap<&str, u32> = FxHashMap::default();
+    for l in &shader.locals {
+        *count.entry(l.name.as_str()).or_default() += 1;
+    }
+    shader
+        .locals
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let base = sanitize(&l.name);
+            let name = if count[l.name.as_str()] > 1 { format!("{base}_{i}") } else { base };
+            (LocalId(i as u32), format!("{prefix}{name}"))
+        })
+        .collect()
+}
+
+/// The type of a place.
+fn place_type(shader: &Shader, place: &Place) -> Type {
+    match place {
+        Place::Local(l) => shader.local(*l).ty,
+        Place::Global(g) => Type::of(g.ty),
+        Place::Index(inner, _) => crate::backend::cpu::element_type(place_type(shader, inner)),
+    }
+}
+
+/// Whether a light's categories match an `illuminance` category selector (`"a,b"`: any of
+/// them; `"-a"`: not in a), as the interpreter decides.
+fn category_matches(selector: &str, categories: &[String]) -> bool {
+    crate::backend::cpu::category_matches(selector, categories)
+}

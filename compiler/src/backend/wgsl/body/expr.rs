@@ -20,6 +20,7 @@ impl Translator<'_> {
         Ok(v)
     }
 
+    /// An expression's value, computed afresh (see [`Translator::expr`]).
     pub(crate) fn expr_uncached(&mut self, id: ExprId) -> Result<Value, Diagnostic> {
         let e = self.shader.expr(id);
         let (ty, span) = (e.ty, e.span);
@@ -124,6 +125,7 @@ impl Translator<'_> {
         })
     }
 
+    /// A literal index, clamped into range as the interpreter clamps; `None` for computed ones.
     pub(crate) fn constant_index(&self, index: ExprId, ty: Type) -> Option<u32> {
         let len = ty.array.unwrap_or(match ty.base {
             Base::Matrix3 => 3,
@@ -138,6 +140,7 @@ impl Translator<'_> {
         Some(i.clamp(0, i64::from(len.max(1) - 1)) as u32)
     }
 
+    /// A literal as a naga value.
     pub(crate) fn literal(&mut self, l: &Literal, span: SrcSpan) -> Result<Value, Diagnostic> {
         Ok(match l {
             Literal::Float(x) => self.float(*x),

@@ -50,6 +50,7 @@ pub(crate) struct Translator<'a> {
 pub(crate) type Value = Handle<Expression>;
 
 impl<'a> Translator<'a> {
+    /// A translator for `shader` whose variables are named after `prefix`, building `function`.
     pub fn new(
         mb: &'a mut ModuleBuilder,
         shader: &'a Shader,
@@ -75,6 +76,7 @@ impl<'a> Translator<'a> {
         }
     }
 
+    /// A diagnostic for something this backend cannot translate (the interpreter may run it).
     pub fn error(&self, span: SrcSpan, message: impl Into<String>) -> Diagnostic {
         Diagnostic::error(Code::Internal, message, span, "here")
             .with_help("the WGSL backend cannot translate this yet; the CPU interpreter can run it")
@@ -107,10 +109,12 @@ impl<'a> Translator<'a> {
         self.fb.add(Expression::GlobalVariable(g))
     }
 
+    /// The value a pointer points at.
     pub fn load(&mut self, pointer: Value) -> Value {
         self.fb.add(Expression::Load { pointer })
     }
 
+    /// Stores a value through a pointer.
     pub fn store(&mut self, pointer: Value, value: Value) {
         self.fb.push(Statement::Store { pointer, value });
     }
@@ -118,6 +122,7 @@ impl<'a> Translator<'a> {
     // ---------------------------------------------------------------------------------------------
     // Statements.
 
+    /// Translates a block of statements into the open naga block.
     pub fn block(&mut self, block: &[Stmt]) -> Result<(), Diagnostic> {
         for s in block {
             self.statement(s)?;
@@ -125,6 +130,7 @@ impl<'a> Translator<'a> {
         Ok(())
     }
 
+    /// Translates one statement (once per light for Stanford per-light statements).
     pub(crate) fn statement(&mut self, stmt: &Stmt) -> Result<(), Diagnostic> {
         if self.light.is_none() && self.statement_is_perlight(stmt) {
             for k in 0..self.lights.len() {

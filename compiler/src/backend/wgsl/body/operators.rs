@@ -11,18 +11,22 @@ use crate::ir::types::{Base, Type};
 use crate::source::Span as SrcSpan;
 
 impl Translator<'_> {
+    /// `left op right`.
     pub fn binary(&mut self, op: BinaryOperator, left: Value, right: Value) -> Value {
         self.fb.add(Expression::Binary { op, left, right })
     }
 
+    /// A math function of one argument.
     pub fn math1(&mut self, fun: MathFunction, arg: Value) -> Value {
         self.fb.add(Expression::Math { fun, arg, arg1: None, arg2: None, arg3: None })
     }
 
+    /// A math function of two arguments.
     pub fn math2(&mut self, fun: MathFunction, arg: Value, arg1: Value) -> Value {
         self.fb.add(Expression::Math { fun, arg, arg1: Some(arg1), arg2: None, arg3: None })
     }
 
+    /// A math function of three arguments.
     pub fn math3(&mut self, fun: MathFunction, arg: Value, arg1: Value, arg2: Value) -> Value {
         self.fb.add(Expression::Math { fun, arg, arg1: Some(arg1), arg2: Some(arg2), arg3: None })
     }
@@ -32,6 +36,7 @@ impl Translator<'_> {
         if n <= 1 { v } else { self.fb.add(Expression::Splat { size: vector_size(n), value: v }) }
     }
 
+    /// A language binary operator on values of types `ta` and `tb`.
     pub(crate) fn binary_op(
         &mut self,
         op: BinaryOp,
@@ -100,6 +105,7 @@ impl Translator<'_> {
         Ok(self.binary(bop, a, b))
     }
 
+    /// A comparison; vectors compare equal when every component does, unequal when any does.
     pub(crate) fn comparison(
         &mut self,
         op: BinaryOp,

@@ -8,6 +8,7 @@ pub const PREFIX: &str = "<stdlib>";
 pub const MODULES: &[(&str, &str)] = &[
     ("pattern.sl", include_str!("../../stdlib/pattern.sl")),
     ("noise.sl", include_str!("../../stdlib/noise.sl")),
+    ("fractal.sl", include_str!("../../stdlib/fractal.sl")),
 ];
 
 /// The source of the standard-library module `name` (e.g. `"pattern.sl"`).

@@ -1,0 +1,150 @@
+//! The standard library's fractal sums (`stdlib/fractal.sl`) on the GPU: the shader of
+//! `compiler/tests/stdlib_fractal.rs` compiled as a compute kernel by the WGSL backend, against
+//! the interpreter's f32 mode, with every parameter varying per point: ordinary argument sets
+//! and the extremes (octaves 0 and 30, H 0 and 2, lacunarity 1 and 8, coordinates ±1e4 and
+//! ±1e6, width 0 and 1e30).
+//!
+//! The noise is bit-exact between the two (runtime/tests/stdlib_noise_gpu.rs); what differs is
+//! `pow` (lavapipe computes exp2(b log2 a) in f32, up to 89 ulp: shared/notes/naga-wgpu-facts.md
+//! §8) in the spectral weights, and `log` in fbm_filtered's octave count. A weight off by a few
+//! 1e-6 relative moves a sum of octaves (each at most 1) by a few 1e-6; the octave count's error
+//! moves the fractional octave's weight. `GPU_TOL` is the bound, the measured largest difference
+//! is printed. Finite everywhere on both.
+//!
+//! Needs a GPU adapter (lavapipe is enough); panics without one unless `PATINA_GPU=off`.
+
+use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
+use patina_compiler::syntax::preprocess::MemoryLoader;
+use patina_runtime::gpu;
+
+const SHADER: &str = "#include <fractal.sl>\n\
+    surface t(varying float H = 0.5, lac = 2, oct = 4, width = 0.01, offset = 1, gain = 2) {\n\
+        Ci = color(fbm(P, H, lac, oct), turbulence(P, oct), fbm_filtered(P, H, lac, oct, width));\n\
+        Oi = color(ridged_multifractal(P, H, lac, oct, offset, gain),\n\
+                   hybrid_multifractal(P, H, lac, oct, offset), 0);\n\
+    }\n";
+
+const NAMES: [&str; 6] =
+    ["fbm", "turbulence", "fbm_filtered", "ridged_multifractal", "hybrid_multifractal", "0"];
+
+/// The inputs in the kernel's order: P (3), H, lac, oct, width, offset, gain.
+const INPUTS: [&str; 7] = ["P", "H", "lac", "oct", "width", "offset", "gain"];
+
+/// The GPU's tolerance against the interpreter's f32 mode (absolute; the values are at most a
+/// few units). Measured on lavapipe: 2.4e-7 (fBm, fbm_filtered), 0 (turbulence, which has no
+/// pow), 1.4e-6 (the multifractals); 79% of the values bit-identical.
+const GPU_TOL: f32 = 1e-5;
+
+/// splitmix64: deterministic pseudo-random numbers.
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn range(&mut self, lo: f64, hi: f64) -> f32 {
+        (lo + (hi - lo) * self.unit()) as f32
+    }
+}
+
+/// Argument sets, 9 words each: P, H, lac, oct, width, offset, gain.
+fn args() -> Vec<[f32; 9]> {
+    let mut rng = Rng(41);
+    let mut args = Vec::new();
+    for i in 0..2000 {
+        let lac = if i % 2 == 0 { 2.0 } else { rng.range(1.5, 3.0) };
+        args.push([
+            rng.range(-50.0, 50.0),
+            rng.range(-50.0, 50.0),
+            rng.range(-50.0, 50.0),
+            rng.range(0.0, 1.5),
+            lac,
+            rng.range(0.0, 10.0),
+            10f64.powf(f64::from(rng.range(-4.0, 0.0))) as f32,
+            rng.range(0.5, 1.2),
+            rng.range(1.0, 3.0),
+        ]);
+    }
+    let points = [
+        [0.0, 0.0, 0.0],
+        [0.3, -0.7, 0.55],
+        [1e4, -1e4, 1e4 + 0.37],
+        [-1e4, 1e4, -1e4],
+        [1e6, -1e6, 1e6 + 0.5],
+        [-1e6, 1e6 + 0.25, -1e6],
+    ];
+    for p in points {
+        for oct in [0.0, 0.5, 1.0, 7.3, 30.0] {
+            for h in [0.0, 2.0] {
+                for lac in [1.0, 2.0, 8.0] {
+                    for width in [0.0, 1e-3, 1.0, 1e30] {
+                        args.push([p[0], p[1], p[2], h, lac, oct, width, 1.0, 2.0]);
+                    }
+                }
+            }
+        }
+    }
+    args
+}
+
+#[test]
+fn fractal_sums_on_the_gpu_match_the_interpreter() {
+    let Some(gpu) = gpu::for_tests() else { return };
+    let checked = patina_compiler::check_source("fractal_gpu.sl", SHADER, &MemoryLoader::default());
+    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
+    let shader = &checked.program.shaders[0];
+    let args = args();
+    let n = args.len();
+
+    // The interpreter in f32.
+    let program =
+        CpuProgram::compile(shader, &Binding::default()).expect("the interpreter compiles fractal.sl");
+    let p: Vec<f64> = args.iter().flat_map(|a| a[..3].iter().map(|&x| f64::from(x))).collect();
+    let scalars: Vec<Vec<f64>> = (3..9).map(|k| args.iter().map(|a| f64::from(a[k])).collect()).collect();
+    let mut inputs: Vec<(&str, &[f64])> = vec![("P", &p)];
+    for (name, column) in INPUTS[1..].iter().zip(&scalars) {
+        inputs.push((name, column));
+    }
+    let cpu = Evaluator::<f32>::new(&program).eval_points(n, &inputs, &["Ci", "Oi"]).expect("evaluation");
+    let cpu: Vec<[f32; 6]> = (0..n)
+        .map(|i| {
+            let (c, o) = (&cpu[0][3 * i..3 * i + 3], &cpu[1][3 * i..3 * i + 3]);
+            [c[0], c[1], c[2], o[0], o[1], o[2]].map(|x| x as f32)
+        })
+        .collect();
+
+    // The GPU: one invocation per argument set.
+    let mut diff = shader.clone();
+    patina_compiler::opt::derivs::differentiate(&mut diff);
+    let kernel = compile_kernel(&diff, &[], &[], &INPUTS, &["Ci", "Oi"])
+        .expect("the WGSL backend compiles fractal.sl");
+    assert_eq!((kernel.input_stride, kernel.output_stride), (9, 6));
+    let input: Vec<u8> = args.iter().flatten().flat_map(|x| x.to_bits().to_le_bytes()).collect();
+    let groups = (n as u32).div_ceil(KERNEL_WORKGROUP);
+    let bytes =
+        gpu.compute(&kernel.module, "main", &[], &[&input], n * 6 * 4, groups).expect("the kernel runs");
+    let gpu_out: Vec<f32> =
+        bytes.chunks_exact(4).map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]]))).collect();
+
+    let mut worst = [0.0f32; 5];
+    let mut identical = 0;
+    for (i, a) in args.iter().enumerate() {
+        for f in 0..5 {
+            let (g, r) = (gpu_out[6 * i + f], cpu[i][f]);
+            assert!(r.is_finite(), "{}({a:?}) = {r} on the interpreter", NAMES[f]);
+            assert!(g.is_finite(), "{}({a:?}) = {g} on the GPU", NAMES[f]);
+            let err = (g - r).abs();
+            worst[f] = worst[f].max(err);
+            identical += usize::from(g.to_bits() == r.to_bits());
+            assert!(err <= GPU_TOL, "{}({a:?}): gpu {g:e}, interpreter {r:e}", NAMES[f]);
+        }
+    }
+    println!("{n} argument sets; {identical} of {} values bit-identical", 5 * n);
+    println!("largest GPU - interpreter difference per function {worst:?}");
+}

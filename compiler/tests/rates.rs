@@ -971,3 +971,50 @@ fn a_store_at_a_varying_index_makes_the_array_varying() {
     let weights = s.locals.iter().find(|l| l.name == "weights").expect("the array");
     assert_eq!(weights.rate, Rate::VERTEX);
 }
+
+#[test]
+fn a_constant_table_declared_in_a_varying_loop_stays_constant() {
+    // The declaration is its only store, so wherever it is read it holds the table: a function
+    // with a `constant` table may be called from a loop bounded by a varying count.
+    let s = shader(&lines(&[
+        "float lookup(float i) {",
+        "    constant float table[3] = { 1, 2, 4 };",
+        "    return table[int(i) % 3];",
+        "}",
+        "surface sum(varying float n = 3)",
+        "{",
+        "    float total = 0;",
+        "    float i;",
+        "    for (i = 0; i < n; i += 1) total += lookup(i);",
+        "    Ci = total;",
+        "}",
+    ]));
+    assert_eq!(rate_of(&s, "table"), Rate::CONSTANT);
+}
+
+#[test]
+fn a_constant_variable_stored_under_a_varying_condition_is_still_an_error() {
+    // Stored once, but not by its declaration: read after the `if`, it may be either value.
+    let (found, _) = codes(&lines(&[
+        "surface s()",
+        "{",
+        "    constant float x;",
+        "    if (s > 0.5) x = 1;",
+        "    Ci = x;",
+        "}",
+    ]));
+    assert_eq!(found, [Code::ControlDependence]);
+    // A second store in a loop is a second statement: no longer one value.
+    let (found, _) = codes(&lines(&[
+        "surface s()",
+        "{",
+        "    float i;",
+        "    for (i = 0; i < s; i += 1) {",
+        "        constant float x = 1;",
+        "        x = 2;",
+        "        Ci = x;",
+        "    }",
+        "}",
+    ]));
+    assert_eq!(found, [Code::ControlDependence; 2]);
+}

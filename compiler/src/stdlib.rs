@@ -9,6 +9,12 @@ pub const MODULES: &[(&str, &str)] = &[
     ("pattern.sl", include_str!("../../stdlib/pattern.sl")),
     ("noise.sl", include_str!("../../stdlib/noise.sl")),
     ("fractal.sl", include_str!("../../stdlib/fractal.sl")),
+    ("lattice.sl", include_str!("../../stdlib/lattice.sl")),
+    ("cellular.sl", include_str!("../../stdlib/cellular.sl")),
+    ("color.sl", include_str!("../../stdlib/color.sl")),
+    ("volume.sl", include_str!("../../stdlib/volume.sl")),
+    ("lighting.sl", include_str!("../../stdlib/lighting.sl")),
+    ("solid.sl", include_str!("../../stdlib/solid.sl")),
 ];
 
 /// The source of the standard-library module `name` (e.g. `"pattern.sl"`).

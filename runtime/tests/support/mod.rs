@@ -1,0 +1,142 @@
+//! Shared by the standard-library tests: one shader source run by the interpreter (f32 and f64)
+//! and by the GPU (the WGSL backend's compute kernel), with the same named inputs and outputs, and
+//! deterministic sample points.
+//!
+//! Use it from a test file with `mod support;`. Each test file uses only part of it.
+#![allow(dead_code)]
+
+use patina_compiler::backend::cpu::scalar::Real;
+use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
+use patina_compiler::ir::Shader;
+use patina_compiler::syntax::preprocess::MemoryLoader;
+use patina_runtime::gpu::Gpu;
+
+/// A checked shader, ready for both backends.
+pub struct Program {
+    /// The shader as the semantic stage produced it.
+    pub shader: Shader,
+    /// The interpreter's code for it.
+    pub cpu: CpuProgram,
+}
+
+/// Checks `source` (which must have no diagnostics) and compiles its first shader for the
+/// interpreter. Standard-library modules are found by `#include <name.sl>`.
+pub fn program(source: &str) -> Program {
+    let checked = patina_compiler::check_source("stdlib_test.sl", source, &MemoryLoader::default());
+    assert!(checked.diagnostics.is_empty(), "{:#?}\nin\n{source}", checked.diagnostics);
+    let shader = checked.program.shaders.into_iter().next().expect("the source defines a shader");
+    let cpu = CpuProgram::compile(&shader, &Binding::default())
+        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
+    Program { shader, cpu }
+}
+
+/// The named inputs of `count` points: each column holds `count * components` values.
+pub type Columns<'a> = [(&'a str, &'a [f64])];
+
+impl Program {
+    /// Runs the interpreter in precision `F` (f32 or f64) at `count` points and returns each
+    /// named output as one column (`count * components` values).
+    pub fn cpu<F: Real>(&self, count: usize, inputs: &Columns, outputs: &[&str]) -> Vec<Vec<f64>> {
+        Evaluator::<F>::new(&self.cpu).eval_points(count, inputs, outputs).expect("evaluation")
+    }
+
+    /// Runs the shader on the GPU as a compute kernel, one invocation per point, with the same
+    /// inputs (rounded to f32) and outputs as [`Program::cpu`]. Every input named must be a float
+    /// type (the kernel reads words as f32 bits).
+    pub fn gpu(&self, gpu: &Gpu, count: usize, inputs: &Columns, outputs: &[&str]) -> Vec<Vec<f64>> {
+        let mut diff = self.shader.clone();
+        patina_compiler::opt::derivs::differentiate(&mut diff);
+        let names: Vec<&str> = inputs.iter().map(|(n, _)| *n).collect();
+        let kernel = compile_kernel(&diff, &[], &[], &names, outputs)
+            .unwrap_or_else(|d| panic!("the WGSL backend: {}: {}", d.code, d.message));
+        let stride = kernel.input_stride as usize;
+        let mut words = vec![0u32; count * stride];
+        for (value, (name, column)) in kernel.inputs.iter().zip(inputs) {
+            let w = value.words as usize;
+            assert_eq!(column.len(), count * w, "input `{name}`: {} values for {count} points", column.len());
+            for i in 0..count {
+                for c in 0..w {
+                    words[i * stride + value.offset as usize + c] = (column[i * w + c] as f32).to_bits();
+                }
+            }
+        }
+        let input: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+        let out_stride = kernel.output_stride as usize;
+        let groups = (count as u32).div_ceil(KERNEL_WORKGROUP).max(1);
+        let bytes = gpu
+            .compute(&kernel.module, "main", &[], &[&input], count * out_stride * 4, groups)
+            .expect("the kernel runs");
+        let out: Vec<f32> = bytes
+            .chunks_exact(4)
+            .map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+            .collect();
+        kernel
+            .outputs
+            .iter()
+            .map(|value| {
+                let w = value.words as usize;
+                let mut column = Vec::with_capacity(count * w);
+                for i in 0..count {
+                    for c in 0..w {
+                        column.push(f64::from(out[i * out_stride + value.offset as usize + c]));
+                    }
+                }
+                column
+            })
+            .collect()
+    }
+}
+
+/// splitmix64: deterministic pseudo-random numbers for sample points.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// The next 64 random bits.
+    pub fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    /// A point with each coordinate uniform in [lo, hi).
+    pub fn point(&mut self, lo: f64, hi: f64) -> [f64; 3] {
+        [self.range(lo, hi), self.range(lo, hi), self.range(lo, hi)]
+    }
+}
+
+/// The extreme values of the stability sweep (issue 7): zero, tiny and denormal magnitudes, and
+/// large ones up to 1e30, with both signs.
+pub fn extremes() -> Vec<f64> {
+    let denormal = f64::from(f32::from_bits(1)); // the smallest f32 denormal, representable in both
+    let mut v = vec![0.0, 1e-30, denormal, 1e4, 1e6, 1e7, 1e30, 0.5, 1.0];
+    v.extend(v.clone().into_iter().map(|x| -x));
+    v
+}
+
+/// The largest absolute difference between two columns, and where.
+pub fn worst(a: &[f64], b: &[f64]) -> (f64, usize) {
+    a.iter().zip(b).enumerate().fold((0.0, 0), |(w, at), (i, (x, y))| {
+        let d = (x - y).abs();
+        if d > w { (d, i) } else { (w, at) }
+    })
+}
+
+/// Asserts every value is finite, naming the output and the point.
+pub fn assert_finite(name: &str, column: &[f64], components: usize) {
+    for (i, x) in column.iter().enumerate() {
+        assert!(x.is_finite(), "{name} is {x} at point {} (component {})", i / components, i % components);
+    }
+}

@@ -15,6 +15,7 @@ pub const MODULES: &[(&str, &str)] = &[
     ("volume.sl", include_str!("../../stdlib/volume.sl")),
     ("lighting.sl", include_str!("../../stdlib/lighting.sl")),
     ("solid.sl", include_str!("../../stdlib/solid.sl")),
+    ("shaders.sl", include_str!("../../stdlib/shaders.sl")),
 ];
 
 /// The source of the standard-library module `name` (e.g. `"pattern.sl"`).

@@ -10,15 +10,13 @@
 // exponent array computed once for all parameters, H-R5) are not reproduced: the spectral
 // weights lacunarity^(-H i) are computed per octave, from this call's parameters.
 //
-// Octave loops: every function here runs a loop of PATINA_FRACTAL_MAX_OCTAVES (default 30)
-// octaves, a constant count, and weights octave i by clamp(octaves - i, 0, 1) (1 for whole
-// octaves, the remainder for the fractional one, 0 beyond). The loop cannot end at `octaves`:
-// snoise3's permutation table is a `constant` local (stdlib/noise.sl), and the rate checker
-// rejects a constant declaration under a uniform or varying condition (ControlDependence), which
-// an octave loop bounded by a parameter is. So the cost is PATINA_FRACTAL_MAX_OCTAVES noise
-// evaluations per call whatever `octaves` is; define PATINA_FRACTAL_MAX_OCTAVES to a smaller
-// count before the first #include <fractal.sl> to make it cheaper (octaves then clamp to it).
-// In exchange every parameter may be varying.
+// Octave loops: every function here runs its loop up to ceil(octaves) (floor(octaves) where only
+// whole octaves count), and weights octave i by clamp(octaves - i, 0, 1) (1 for whole octaves, the
+// remainder for the fractional one). The loop counter is an ordinary (varying) variable, so every
+// parameter may be varying; snoise3's permutation table is a `constant` local initialised at its
+// declaration, which stays constant under the varying loop (the rate checker's rule since issue 7).
+// The octave count is clamped to PATINA_FRACTAL_MAX_OCTAVES (default 30); define it to a smaller
+// count before the first #include <fractal.sl> to cap the cost.
 //
 // Guards shared by every function here, so that any finite input gives a finite result on both
 // backends: the octave count is clamped to [0, 30] (PATINA_FRACTAL_MAX_OCTAVES); H below 0 is
@@ -57,8 +55,8 @@ float fbm(point p; float H, lacunarity, octaves)
     float oct = clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES);
     float value = 0;
     point pp = p;
-    constant float i;
-    for (i = 0; i < PATINA_FRACTAL_MAX_OCTAVES; i += 1) {
+    float i;
+    for (i = 0; i < oct; i += 1) {
         // 1 for whole octaves, the remainder for the fractional last one, 0 beyond.
         value += clamp(oct - i, 0, 1) * snoise3(pp) * pow(lac, -h * i);
         pp = pp * lac;
@@ -74,8 +72,8 @@ float turbulence(point p; float octaves)
 {
     float oct = clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES);
     float value = 0, f = 1;
-    constant float i;
-    for (i = 0; i < PATINA_FRACTAL_MAX_OCTAVES; i += 1) {
+    float i;
+    for (i = 0; i < oct; i += 1) {
         value += clamp(oct - i, 0, 1) * abs(snoise3(p * f)) / f;
         f *= 2;
     }
@@ -95,8 +93,8 @@ float ridged_multifractal(point p; float H, lacunarity, octaves, offset, gain)
     float n = floor(clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES));
     float result = 0, weight = 1, signal;
     point pp = p;
-    constant float i;
-    for (i = 0; i < PATINA_FRACTAL_MAX_OCTAVES; i += 1) {
+    float i;
+    for (i = 0; i < n; i += 1) {
         signal = offset - abs(snoise3(pp));
         signal = signal * signal * weight;
         result += clamp(n - i, 0, 1) * signal * pow(lac, -h * i);
@@ -123,8 +121,8 @@ float hybrid_multifractal(point p; float H, lacunarity, octaves, offset)
     float oct = clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES);
     float result = 0, weight = 1, signal;
     point pp = p;
-    constant float i;
-    for (i = 0; i < PATINA_FRACTAL_MAX_OCTAVES; i += 1) {
+    float i;
+    for (i = 0; i < oct; i += 1) {
         weight = min(weight, 1);
         signal = (snoise3(pp) + offset) * pow(lac, -h * i);
         result += clamp(oct - i, 0, 1) * weight * signal;

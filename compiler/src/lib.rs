@@ -45,10 +45,20 @@ pub fn check_source(name: &str, text: &str, loader: &dyn SourceLoader) -> Checke
     let mut diagnostics = Diagnostics::default();
     let module = syntax::parse_file(&mut sources, root, loader, &mut diagnostics);
     // Semantics on a tree with syntax errors would only echo them.
-    let program = if diagnostics.has_errors() {
-        ir::Program::default()
-    } else {
-        sema::check(&module, &mut diagnostics)
-    };
-    Checked { sources, root, module, program, diagnostics }
+    if diagnostics.has_errors() {
+        return Checked { sources, root, module, program: ir::Program::default(), diagnostics };
+    }
+    // The built-ins written in the language are parsed only for files that may call them; a call
+    // the scan misses (a name made by token pasting) is caught by the semantic stage, which then
+    // asks for the library and is run again.
+    let before = diagnostics.clone();
+    let mut library = stdlib::mentions_library_builtins(&sources)
+        .then(|| stdlib::parse_library_builtins(&mut sources, loader, &mut diagnostics));
+    let mut checked = sema::check(&module, library.as_ref(), &mut diagnostics);
+    if checked.wants_library && library.is_none() {
+        diagnostics = before;
+        library = Some(stdlib::parse_library_builtins(&mut sources, loader, &mut diagnostics));
+        checked = sema::check(&module, library.as_ref(), &mut diagnostics);
+    }
+    Checked { sources, root, module, program: checked.program, diagnostics }
 }

@@ -22,3 +22,41 @@ pub const MODULES: &[(&str, &str)] = &[
 pub fn source(name: &str) -> Option<&'static str> {
     MODULES.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
 }
+
+/// The built-in functions whose implementations are written in the language, in
+/// `stdlib/builtins.sl` (as `__NAME_RESULT` overloaded by parameter types).
+pub const LIBRARY_BUILTINS: &[&str] = &["noise", "snoise", "pnoise", "cellnoise"];
+
+/// The file that implements the library built-ins; it is not for `#include`.
+const LIBRARY: &str = include_str!("../../stdlib/builtins.sl");
+
+/// Whether `name` is a built-in written in the language.
+pub fn is_library_builtin(name: &str) -> bool {
+    LIBRARY_BUILTINS.contains(&name)
+}
+
+/// Whether any file in `sources` contains the name of a library built-in as a word (comments
+/// included: a false positive costs only a parse).
+pub fn mentions_library_builtins(sources: &crate::source::SourceMap) -> bool {
+    let is_word = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
+    // The library's own modules call their functions directly, and mention `noise` in comments.
+    sources.files().filter(|(_, file)| !file.name.starts_with(PREFIX)).any(|(_, file)| {
+        let text = file.text.as_bytes();
+        LIBRARY_BUILTINS.iter().any(|name| {
+            file.text.match_indices(name).any(|(at, _)| {
+                let end = at + name.len();
+                (at == 0 || !is_word(text[at - 1])) && (end == text.len() || !is_word(text[end]))
+            })
+        })
+    })
+}
+
+/// Parses `stdlib/builtins.sl` into `sources` (as `<stdlib>/builtins.sl`), for the semantic stage.
+pub fn parse_library_builtins(
+    sources: &mut crate::source::SourceMap,
+    loader: &dyn crate::syntax::preprocess::SourceLoader,
+    diags: &mut crate::diag::Diagnostics,
+) -> crate::syntax::ast::Module {
+    let file = sources.add_file(format!("{PREFIX}/builtins.sl"), LIBRARY, None);
+    crate::syntax::parse_file(sources, file, loader, diags)
+}

@@ -16,7 +16,7 @@ use rustc_hash::FxHashMap;
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::Program;
 use crate::syntax::ast::{self, Item};
-use lower::FunctionTable;
+use lower::{FunctionTable, Functions};
 
 /// Collects the module's top-level functions, reporting duplicates. (Functions defined inside
 /// bodies are scoped to them; the lowering handles those.)
@@ -49,10 +49,23 @@ fn functions<'a>(module: &'a ast::Module, diags: &mut Diagnostics) -> FunctionTa
     table
 }
 
+/// What [`check`] found.
+pub struct Checked {
+    /// The shaders without errors.
+    pub program: Program,
+    /// Whether the module calls a built-in written in the language (`stdlib/builtins.sl`) while
+    /// `library` was not given: check again with it.
+    pub wants_library: bool,
+}
+
 /// Checks a parsed module and lowers each of its shaders to the typed IR. Shaders with errors are
-/// left out of the program; their diagnostics are in `diags`.
-pub fn check(module: &ast::Module, diags: &mut Diagnostics) -> Program {
-    let table = functions(module, diags);
+/// left out of the program; their diagnostics are in `diags`. `library` is the parsed
+/// `stdlib/builtins.sl`, whose functions implement the library built-ins.
+pub fn check(module: &ast::Module, library: Option<&ast::Module>, diags: &mut Diagnostics) -> Checked {
+    let table = Functions {
+        user: functions(module, diags),
+        library: library.map(|l| functions(l, diags)).unwrap_or_default(),
+    };
     let globals: Vec<&ast::VarDecl> = module
         .items
         .iter()
@@ -71,7 +84,7 @@ pub fn check(module: &ast::Module, diags: &mut Diagnostics) -> Program {
     // Functions are checked where they are inlined; the ones no shader calls (all of them, in a
     // library module) are checked on their own so that their errors are reported too.
     let mut unused: Vec<&ast::FunctionDef> =
-        table.values().flatten().copied().filter(|f| !shared.inlined.contains(&f.span)).collect();
+        table.user.values().flatten().copied().filter(|f| !shared.inlined.contains(&f.span)).collect();
     unused.sort_by_key(|f| (f.span.file, f.span.start));
     // A function outside any shader is read in the file's style (Stanford if its shaders are).
     let stanford = module
@@ -85,5 +98,5 @@ pub fn check(module: &ast::Module, diags: &mut Diagnostics) -> Program {
     for f in unused {
         lower::check_function(f, stanford, &globals, &table, &mut shared, diags);
     }
-    program
+    Checked { program, wants_library: shared.wants_library }
 }

@@ -312,15 +312,13 @@ impl Translator<'_> {
                 ));
             }
             "noise" | "snoise" | "pnoise" | "cellnoise" => {
-                return Err(Diagnostic::error(
-                    Code::NotExecutable,
-                    format!("`{}` is not available on the GPU yet", b.name),
+                return Err(super::internal(
                     span,
-                    "noise built-in",
-                )
-                .with_note(
-                    "noise is written in the language by the standard library (issue 7); until \
-                     then neither backend runs it",
+                    format!(
+                        "`{}` reached the WGSL backend as a built-in; the semantic stage inlines its \
+                         implementation from stdlib/builtins.sl",
+                        b.name
+                    ),
                 ));
             }
             "texture" | "texture3d" => {

@@ -20,7 +20,7 @@
 //! 4. `consumers`: each consumer's expression is overwritten in place with its formula.
 //!
 //! Derivative 0 by definition: per-light values (`L`, `Cl`, `Ol`, Stanford's `H`: a light's
-//! values are taken as constant across the pixel), `du` and `dv`, `random()`, the noise family,
+//! values are taken as constant across the pixel), `du` and `dv`, `random()`,
 //! the lighting functions, colours given in or converted to hsv, hsl or xyY, texture lookups,
 //! `fresnel`'s outputs, and the result of any derivative built-in (there are no second
 //! derivatives). Left out: the change of `spline`'s parameter (knots only), and of the matrix of

@@ -89,10 +89,15 @@ impl Lowerer<'_> {
         span: Span,
         out: &mut Block,
     ) -> Option<ExprId> {
-        let functions = self.functions;
+        // Library code calls library functions and built-ins only, whatever the user defines.
+        let in_library = self.in_library();
+        let functions = if in_library { &self.functions.library } else { &self.functions.user };
         // Functions defined in enclosing bodies come first, then the file's, then the built-ins.
-        let locals: Vec<(usize, std::rc::Rc<ast::FunctionDef>)> =
-            self.local_functions.iter().filter(|(_, f)| f.name.name == callee.name).cloned().collect();
+        let locals: Vec<(usize, std::rc::Rc<ast::FunctionDef>)> = if in_library {
+            Vec::new()
+        } else {
+            self.local_functions.iter().filter(|(_, f)| f.name.name == callee.name).cloned().collect()
+        };
         let user: Vec<Candidate<'_>> = if locals.is_empty() {
             functions
                 .get(&callee.name)
@@ -164,13 +169,7 @@ impl Lowerer<'_> {
                 }
                 let args: Vec<Option<ExprId>> = lowered.into_iter().map(Some).collect();
                 let outer = locals.iter().find(|(_, g)| std::ptr::eq(&**g, f)).map(|(depth, _)| *depth);
-                let result = self.inline_body(f, &args, span, outer, out);
-                let ret = declared_type(f.return_type, None);
-                match result {
-                    Some(local) => Some(self.push_expr(ExprKind::Local(local), ret, span)),
-                    // A void call used as a statement: give the caller something to ignore.
-                    None => Some(self.push_expr(ExprKind::Construct(Vec::new()), Type::VOID, span)),
-                }
+                Some(self.inline_call(f, &args, span, outer, in_library, out))
             }
             Candidate::Builtin(b) => {
                 match b.context {
@@ -226,9 +225,73 @@ impl Lowerer<'_> {
                         return Some(self.push_expr(ExprKind::Builtin(three, converted), three.ret, span));
                     }
                 }
+                if crate::stdlib::is_library_builtin(b.name) {
+                    return self.library_builtin(b, converted, span, out);
+                }
                 Some(self.push_expr(ExprKind::Builtin(b, converted), b.ret, span))
             }
         }
+    }
+
+    /// Inlines a call of `f` and returns the expression of its result.
+    fn inline_call(
+        &mut self,
+        f: &ast::FunctionDef,
+        args: &[Option<ExprId>],
+        span: Span,
+        outer: Option<usize>,
+        library: bool,
+        out: &mut Block,
+    ) -> ExprId {
+        let result = self.inline_body(f, args, span, outer, library, out);
+        match result {
+            Some(local) => self.push_expr(ExprKind::Local(local), declared_type(f.return_type, None), span),
+            // A void call used as a statement: give the caller something to ignore.
+            None => self.push_expr(ExprKind::Construct(Vec::new()), Type::VOID, span),
+        }
+    }
+
+    /// A built-in written in the language (`noise`, `cellnoise`, ...): inlines its implementation
+    /// from `stdlib/builtins.sl`, the function `__NAME_RESULT` whose parameters have the
+    /// overload's types. Without the library loaded, asks for it (the caller checks again).
+    fn library_builtin(
+        &mut self,
+        b: &'static Builtin,
+        args: Vec<ExprId>,
+        span: Span,
+        out: &mut Block,
+    ) -> Option<ExprId> {
+        let name = format!("__{}_{}", b.name, b.ret);
+        let types: Vec<Type> = args.iter().map(|&a| self.ty(a)).collect();
+        let implementation = self.functions.library.get(name.as_str()).and_then(|fs| {
+            fs.iter().copied().find(|f| {
+                f.params.len() == types.len()
+                    && f.params.iter().zip(&types).all(|(p, t)| declared_type(p.ty, p.array.as_ref()) == *t)
+            })
+        });
+        let Some(f) = implementation else {
+            if self.functions.library.is_empty() {
+                self.shared.wants_library = true;
+                return Some(self.push_expr(ExprKind::Builtin(b, args), b.ret, span));
+            }
+            self.error(Diagnostic::error(
+                Code::Internal,
+                format!("the standard library has no implementation of `{}`", b.signature),
+                span,
+                "this built-in",
+            ));
+            return None;
+        };
+        let args: Vec<Option<ExprId>> = args.into_iter().map(Some).collect();
+        let first = self.locals.len();
+        let result = self.inline_call(f, &args, span, None, true, out);
+        // `patina explain` shows the implementation's variables under the built-in's name.
+        for local in &mut self.locals[first..] {
+            if local.function.as_deref() == Some(name.as_str()) {
+                local.function = Some(b.name.into());
+            }
+        }
+        Some(result)
     }
 
     fn wrong_kind(&mut self, callee: &ast::Ident, needs: &str) -> Option<ExprId> {

@@ -21,6 +21,16 @@ use super::convert;
 /// The functions a module defines, by name.
 pub type FunctionTable<'a> = FxHashMap<SmolStr, Vec<&'a ast::FunctionDef>>;
 
+/// The functions calls can reach: the file's own, and the standard library's implementations of
+/// library built-ins (`stdlib/builtins.sl`), which only built-in calls and library code reach.
+#[derive(Default)]
+pub struct Functions<'a> {
+    /// The file's top-level functions (and those of the files it includes).
+    pub user: FunctionTable<'a>,
+    /// The library built-ins' implementations and the library functions they call.
+    pub library: FunctionTable<'a>,
+}
+
 /// What the statements being lowered are inside of.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 enum LightLoop {
@@ -44,6 +54,9 @@ struct Frame {
     /// below that (the body's variables), as nested functions do.
     outer: Option<usize>,
     call_span: Span,
+    /// A library built-in's implementation (or a function it calls): its calls resolve in the
+    /// library, never among the user's functions.
+    library: bool,
 }
 
 /// What lowering keeps across the shaders and functions of one module.
@@ -53,6 +66,9 @@ pub(super) struct Shared {
     reported: FxHashSet<(Code, Span, String)>,
     /// The functions inlined somewhere (the others are checked on their own).
     pub(super) inlined: FxHashSet<Span>,
+    /// Whether a library built-in was called while no library was loaded: the caller loads it
+    /// and checks again.
+    pub(super) wants_library: bool,
 }
 
 /// The state of lowering one shader.
@@ -63,7 +79,7 @@ pub(super) struct Lowerer<'a> {
     failed: bool,
     /// Checking a function on its own, not inlined into a shader.
     standalone: bool,
-    functions: &'a FunctionTable<'a>,
+    functions: &'a Functions<'a>,
     kind: ShaderKind,
     stanford: bool,
     locals: Vec<Local>,
@@ -85,7 +101,7 @@ pub(super) struct Lowerer<'a> {
 pub(super) fn lower_shader(
     shader: &ast::ShaderDef,
     globals: &[&ast::VarDecl],
-    functions: &FunctionTable<'_>,
+    functions: &Functions<'_>,
     shared: &mut Shared,
     diags: &mut Diagnostics,
 ) -> Option<Shader> {
@@ -147,7 +163,7 @@ pub(super) fn check_function(
     f: &ast::FunctionDef,
     stanford: bool,
     globals: &[&ast::VarDecl],
-    functions: &FunctionTable<'_>,
+    functions: &Functions<'_>,
     shared: &mut Shared,
     diags: &mut Diagnostics,
 ) {
@@ -168,14 +184,14 @@ pub(super) fn check_function(
         })
         .collect();
     l.standalone = true;
-    l.inline_body(f, &args, f.span, None, &mut body);
+    l.inline_body(f, &args, f.span, None, false, &mut body);
 }
 
 impl<'a> Lowerer<'a> {
     fn new(
         diags: &'a mut Diagnostics,
         shared: &'a mut Shared,
-        functions: &'a FunctionTable<'a>,
+        functions: &'a Functions<'a>,
         kind: ShaderKind,
         stanford: bool,
         result_type: Type,
@@ -203,6 +219,11 @@ impl<'a> Lowerer<'a> {
 }
 
 impl Lowerer<'_> {
+    /// Whether the code being lowered is a library built-in's (`stdlib/builtins.sl`).
+    fn in_library(&self) -> bool {
+        self.frames.last().is_some_and(|f| f.library)
+    }
+
     /// Reports a diagnostic once (an inlined function's body is lowered at every call).
     fn error(&mut self, d: Diagnostic) {
         self.failed |= d.is_error();
@@ -388,7 +409,9 @@ impl Lowerer<'_> {
             Some(ast::RateQualifier::Varying) => {
                 Some(if is_param && q.output.is_none() { Frequency::Vertex } else { Frequency::Fragment })
             }
-            None if self.stanford => {
+            // Library built-ins' variables are inferred in both styles, so that a built-in
+            // written in the language keeps a built-in's rate: that of its arguments.
+            None if self.stanford || self.in_library() => {
                 if is_param {
                     Some(Frequency::PrimitiveGroup)
                 } else {

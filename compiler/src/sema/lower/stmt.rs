@@ -403,13 +403,15 @@ impl Lowerer<'_> {
     }
 
     /// Inlines the body of `f` with its parameters bound to `args`; returns the result's local.
-    /// `outer` is the definition depth of a function defined in a body.
+    /// `outer` is the definition depth of a function defined in a body; `library` says that `f`
+    /// is a library built-in's implementation or a function one calls.
     pub(super) fn inline_body(
         &mut self,
         f: &ast::FunctionDef,
         args: &[Option<ExprId>],
         call_span: crate::source::Span,
         outer: Option<usize>,
+        library: bool,
         out: &mut Block,
     ) -> Option<LocalId> {
         self.shared.inlined.insert(f.span);
@@ -454,6 +456,7 @@ impl Lowerer<'_> {
             scope_base,
             outer,
             call_span,
+            library,
         });
         let stmts = &f.body.stmts;
         for s in stmts {

@@ -178,12 +178,12 @@ impl Lower<'_> {
             }
             "noise" | "snoise" | "pnoise" | "cellnoise" => {
                 return Err(Diagnostic::error(
-                    DiagCode::NotExecutable,
-                    format!("the interpreter cannot run `{}` yet", b.name),
+                    DiagCode::Internal,
+                    format!("`{}` reached the interpreter as a built-in", b.name),
                     span,
-                    "noise built-in",
+                    "this call",
                 )
-                .with_note("noise is written in the language by the standard library (issue 7); until then it has no implementation on either backend"));
+                .with_note("the semantic stage inlines its implementation from stdlib/builtins.sl"));
             }
             "__texel2d" | "__texel3d" => {
                 let texture = self.texture_index(args[0])?;

@@ -173,6 +173,11 @@ fn colour_spaces() {
 }
 
 #[test]
+fn noise() {
+    run_cases(&cases::noise(), &[]);
+}
+
+#[test]
 fn splines() {
     run_cases(&cases::splines(), &[]);
 }
@@ -221,29 +226,6 @@ fn predefined_varying_inputs() {
         ("f", tol::MIN_MAX),
     ];
     run_shader(&gpu, src, &[], &outputs);
-}
-
-#[test]
-fn what_neither_backend_runs_is_rejected_by_both() {
-    use patina_compiler::backend::cpu::{Binding, CpuProgram};
-    use patina_compiler::backend::wgsl::compile_kernel;
-    use patina_compiler::syntax::preprocess::MemoryLoader;
-    let compile = |body: &str| {
-        let src = format!("surface t(output varying float o = 0; output varying color c = 0) {{ {body} }}");
-        let checked = patina_compiler::check_source("t.sl", &src, &MemoryLoader::default());
-        assert!(!checked.has_errors(), "{body}: {:?}", checked.diagnostics);
-        let shader = checked.program.shaders[0].clone();
-        let cpu = CpuProgram::compile(&shader, &Binding::default()).map(|_| ());
-        let mut diff = shader;
-        patina_compiler::opt::prepare(&mut diff);
-        let gpu = compile_kernel(&diff, &[], &[], &["s"], &["o"]).map(|_| ());
-        (cpu, gpu)
-    };
-    // Noise: neither backend has it until the standard library writes it in the language.
-    for body in ["o = noise(s);", "c = cellnoise(P);", "o = snoise(s, t);", "o = pnoise(s, 4);"] {
-        let (cpu, gpu) = compile(body);
-        assert!(cpu.is_err() && gpu.is_err(), "{body}: interpreter {cpu:?}, GPU {gpu:?}");
-    }
 }
 
 #[test]

@@ -706,6 +706,11 @@ fn colour_spaces() {
 }
 
 #[test]
+fn noise() {
+    run_group("noise", cases::noise(), &[], same);
+}
+
+#[test]
 fn splines() {
     run_group("splines", cases::splines(), &[], same);
 }

@@ -471,6 +471,55 @@ pub fn colour_spaces() -> Vec<Case> {
     cases
 }
 
+/// The noise built-ins (`noise`, `snoise`, `pnoise`, `cellnoise`), written in the language
+/// (stdlib/builtins.sl over stdlib/noise.sl and stdlib/cellular.sl): floor, integer hashing and
+/// polynomials, so the two backends agree bit for bit. Every overload, float and colour results
+/// (a colour result is three float evaluations at offset domains or seeds); coordinates across
+/// many cells, both signs, on lattice points and far out; periods including the guarded ones
+/// (below 1, fractional, beyond 256).
+pub fn noise() -> Vec<Case> {
+    let e = tol::EXACT;
+    const COORDINATES: &[f64] = &[0.0, -0.0, 0.5, -0.5, 1.0, 255.5, -256.25, 1e4 + 0.25, -1e6, 3.0e9];
+    const PERIODS: &[f64] = &[1.0, 0.0, -3.0, 0.5, 2.5, 7.0, 256.0, 300.0];
+    let x = (F, with(-300.0, 300.0, COORDINATES));
+    let p = ("point", with(-300.0, 300.0, COORDINATES));
+    let q = (F, with(1.0, 9.0, PERIODS));
+    let qp = ("point", with(1.0, 9.0, PERIODS));
+    let mut cases = Vec::new();
+    for out in [F, "color"] {
+        for name in ["noise", "snoise", "cellnoise"] {
+            let calls: [(&'static str, Vec<(&'static str, Dom)>); 4] = match name {
+                "noise" => [
+                    ("$o = noise($0);", vec![x]),
+                    ("$o = noise($0, $1);", vec![x, x]),
+                    ("$o = noise($0);", vec![p]),
+                    ("$o = noise($0, $1);", vec![p, x]),
+                ],
+                "snoise" => [
+                    ("$o = snoise($0);", vec![x]),
+                    ("$o = snoise($0, $1);", vec![x, x]),
+                    ("$o = snoise($0);", vec![p]),
+                    ("$o = snoise($0, $1);", vec![p, x]),
+                ],
+                _ => [
+                    ("$o = cellnoise($0);", vec![x]),
+                    ("$o = cellnoise($0, $1);", vec![x, x]),
+                    ("$o = cellnoise($0);", vec![p]),
+                    ("$o = cellnoise($0, $1);", vec![p, x]),
+                ],
+            };
+            for (body, args) in calls {
+                cases.push(c1(body, &args, out, e));
+            }
+        }
+        cases.push(c1("$o = pnoise($0, $1);", &[x, q], out, e));
+        cases.push(c1("$o = pnoise($0, $1, $2, $3);", &[x, x, q, q], out, e));
+        cases.push(c1("$o = pnoise($0, $1);", &[p, qp], out, e));
+        cases.push(c1("$o = pnoise($0, $1, $2, $3);", &[p, x, qp, q], out, e));
+    }
+    cases
+}
+
 pub fn splines() -> Vec<Case> {
     let e = tol::MIN_MAX;
     let x = (F, with(-0.2, 1.2, &[0.0, 1.0, 0.5, 0.25, 0.75, 1.0 / 3.0]));

@@ -206,13 +206,14 @@ float banks_table(float s, t; float kd, ks, n)
 
 // The Heidrich/Banks anisotropic model summed over the non-ambient lights, as the Stanford
 // listings compute it per light (L3326, L3395) with the table replaced by its formula:
-// sum of Cl * max(0, N . normalize(L)) * (kd * banks_diffuse(T, L) + ks * banks_specular(T, L, V, n)).
-// The max(0, N . L) factor is the listings' self-shadowing term.
+// sum of Cl * max(0, normalize(N) . normalize(L)) * (kd * banks_diffuse(T, L) +
+// ks * banks_specular(T, L, V, n)). The max(0, N . L) factor is the listings' self-shadowing
+// term (their N is normalized, L3314, so it is here).
 color banks(vector T; normal N; vector V; float kd, ks, n)
 {
     color C = 0;
     illuminance(P) {
-        float shadowing = max(0, N . lighting_normalize(L));
+        float shadowing = max(0, lighting_normalize(N) . lighting_normalize(L));
         C += Cl * shadowing * (kd * banks_diffuse(T, L) + ks * banks_specular(T, L, V, n));
     }
     return C;

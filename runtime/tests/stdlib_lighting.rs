@@ -269,3 +269,275 @@ fn rm_light_sums_are_the_builtins_bit_for_bit() {
 fn sum_lights() -> Vec<LightBinding> {
     vec![LightBinding::default(), LightBinding { ambient: true, categories: vec![] }, LightBinding::default()]
 }
+
+/// The measured bounds (docs/stdlib/lighting.md): f32 interpreter against the f64 port, and the
+/// GPU against the f32 interpreter, relative to max(1, |value|).
+const F32_REL: f64 = 5e-5;
+const GPU_REL: f64 = 2e-5;
+
+#[test]
+fn rm_light_sums_match_the_ri_formulas() {
+    let program = lit(SUMS, "sums", sum_lights());
+    let count = 2000;
+    let cols = sum_inputs(count, 11);
+    let inputs = columns(&cols);
+    let col = |name: &str| &cols.iter().find(|(n, _)| *n == name).unwrap().1;
+    let (n, v, l, r, sz) = (col("n"), col("v"), col("l"), col("r"), col("sz"));
+    let lights = [(col("L[0]"), col("Cl[0]")), (col("L[2]"), col("Cl[2]"))];
+    // The port: each output column, three components per point.
+    let mut want: Vec<Vec<f64>> = vec![Vec::new(); 4];
+    for i in 0..count {
+        let (ni, vi) = (at(n, i), at(v, i));
+        let mut sums = [[0.0; 3]; 3];
+        for (lc, cc) in lights {
+            let (li, ci) = (at(lc, i), at(cc, i));
+            let w = [ri_diffuse(ni, li), ri_specular(ni, vi, li, r[i]), ri_phong(ni, vi, li, sz[i])];
+            for (s, w) in sums.iter_mut().zip(w) {
+                *s = add(*s, scale(ci, w));
+            }
+        }
+        for k in 0..3 {
+            want[k].extend_from_slice(&sums[k]);
+        }
+        let b = ri_specularbrdf(at(l, i), ni, vi, r[i]);
+        want[3].extend_from_slice(&[b, b, b]);
+    }
+    let outputs = ["d1", "s1", "p1", "b1"];
+    let f64_out = program.cpu::<f64>(count, &inputs, &outputs);
+    let f32_out = program.cpu::<f32>(count, &inputs, &outputs);
+    for k in 0..4 {
+        close(&format!("f64 {}", outputs[k]), &f64_out[k], &want[k], 1e-12);
+        let e = close(&format!("f32 {}", outputs[k]), &f32_out[k], &want[k], F32_REL);
+        eprintln!("f32 {} vs the port: {e:e}", outputs[k]);
+    }
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let g = program.gpu(&gpu, count, &inputs, &outputs);
+    for k in 0..4 {
+        let e = close(&format!("gpu {}", outputs[k]), &g[k], &f32_out[k], GPU_REL);
+        eprintln!("gpu {} vs f32: {e:e} (absolute {:e})", outputs[k], worst(&g[k], &f32_out[k]).0);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Kajiya-Kay and Banks / Heidrich-Seidel.
+
+const HAIR: &str = "#include <lighting.sl>
+surface hair(varying vector tt = 0; varying vector l = 0; varying vector e = 0; varying float p = 1;
+             output varying float kd = 0, ks = 0, km = 0, bd = 0, bs = 0, bt = 0)
+{
+    kd = kajiya_kay_diffuse(tt, l);
+    ks = kajiya_kay_specular(tt, l, e, p);
+    km = kajiya_kay_specular_mirror(tt, l, e, p);
+    bd = banks_diffuse(tt, l);
+    bs = banks_specular(tt, l, e, p);
+    vector tn = normalize(tt);
+    bt = banks_table(0.5 * (tn . normalize(e)) + 0.5, 0.5 * (tn . normalize(l)) + 0.5, 0.7, 0.3, p);
+    Ci = 0; Oi = 1;
+}";
+
+const HAIR_OUTPUTS: [&str; 6] = ["kd", "ks", "km", "bd", "bs", "bt"];
+
+fn hair_columns(ts: &[V3], ls: &[V3], es: &[V3], ps: &[f64]) -> Vec<(&'static str, Vec<f64>)> {
+    vec![
+        ("tt", ts.iter().flatten().copied().collect()),
+        ("l", ls.iter().flatten().copied().collect()),
+        ("e", es.iter().flatten().copied().collect()),
+        ("p", ps.to_vec()),
+    ]
+}
+
+#[test]
+fn hair_terms_match_kajiya_kay_and_heidrich_seidel() {
+    let program = lit(HAIR, "hair", vec![]);
+    let mut rng = Rng(3);
+    let count = 2000;
+    let (mut ts, mut ls, mut es, mut ps) = (vec![], vec![], vec![], vec![]);
+    for _ in 0..count {
+        // Unnormalized tangents and light vectors (the functions normalize).
+        ts.push(scale(random_unit(&mut rng), rng.range(0.5, 3.0)));
+        ls.push(scale(random_unit(&mut rng), rng.range(0.5, 3.0)));
+        es.push(random_unit(&mut rng));
+        ps.push(rng.range(0.0, 80.0));
+    }
+    let cols = hair_columns(&ts, &ls, &es, &ps);
+    let inputs = columns(&cols);
+    let mut want: Vec<Vec<f64>> = vec![Vec::new(); 6];
+    for i in 0..count {
+        let (t, l, e, p) = (ts[i], ls[i], es[i], ps[i]);
+        let d = kk_diffuse(t, l);
+        let (s, m) = (kk_specular(t, l, e, p, false), kk_specular(t, l, e, p, true));
+        for (k, x) in [d, s, m, d, m, 0.7 * d + 0.3 * m].into_iter().enumerate() {
+            want[k].push(x);
+        }
+    }
+    let f64_out = program.cpu::<f64>(count, &inputs, &HAIR_OUTPUTS);
+    let f32_out = program.cpu::<f32>(count, &inputs, &HAIR_OUTPUTS);
+    for k in 0..6 {
+        // The table entry goes through (0.5 x + 0.5) and back: a few ulps, times the exponent.
+        let tol = if k == 5 { 1e-10 } else { 1e-12 };
+        close(&format!("f64 {}", HAIR_OUTPUTS[k]), &f64_out[k], &want[k], tol);
+    }
+    // In f32 sqrt(1 - c^2) loses accuracy near c = ±1 (parallel vectors): |d sin| ≈ |d c| / sin.
+    // Compare where sin(t, l) and sin(t, e) exceed 0.01.
+    let mut worst_f32 = [0.0f64; 6];
+    for i in 0..count {
+        if kk_diffuse(ts[i], ls[i]) < 0.01 || kk_diffuse(ts[i], es[i]) < 0.01 {
+            continue;
+        }
+        for k in 0..6 {
+            let d = (f32_out[k][i] - want[k][i]).abs() / want[k][i].abs().max(1.0);
+            worst_f32[k] = worst_f32[k].max(d);
+        }
+    }
+    eprintln!("f32 hair terms vs the port (sin > 0.01): {worst_f32:?}");
+    for (k, w) in worst_f32.iter().enumerate() {
+        assert!(*w <= 1e-4, "f32 {}: {w:e}", HAIR_OUTPUTS[k]);
+    }
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let g = program.gpu(&gpu, count, &inputs, &HAIR_OUTPUTS);
+    for k in 0..6 {
+        let e = close(&format!("gpu {}", HAIR_OUTPUTS[k]), &g[k], &f32_out[k], GPU_REL);
+        eprintln!("gpu {} vs f32: {e:e}", HAIR_OUTPUTS[k]);
+    }
+}
+
+#[test]
+fn hair_closed_forms_and_the_specular_cones() {
+    let program = lit(HAIR, "hair", vec![]);
+    let z = [0.0, 0.0, 1.0];
+    // Parallel, antiparallel and perpendicular tangents (exact vectors).
+    let ts = [z, z, z, [0.0, 0.0, -3.0]];
+    let ls = [[0.0, 0.0, 2.0], [0.0, 0.0, -1.0], [4.0, 0.0, 0.0], [0.0, 5.0, 0.0]];
+    let es = [[1.0, 0.0, 0.0]; 4];
+    let cols = hair_columns(&ts, &ls, &es, &[8.0; 4]);
+    for out in [program.cpu::<f64>(4, &columns(&cols), &HAIR_OUTPUTS), program.cpu::<f32>(4, &columns(&cols), &HAIR_OUTPUTS)]
+    {
+        assert_eq!(out[0], [0.0, 0.0, 1.0, 1.0], "sin(t, l): dark when t points at the light");
+    }
+    // The highlight cones: l at 50 degrees from t, e around t at every angle; the printed term
+    // is 1 on the cone t . e = t . l, the mirror term on t . e = -t . l.
+    let a = 50f64.to_radians();
+    let l = [a.sin(), 0.0, a.cos()];
+    let mut es = Vec::new();
+    for k in 0..8 {
+        let phi = k as f64 * 0.7;
+        let (c, s) = (a.cos(), a.sin());
+        es.push([s * phi.cos(), s * phi.sin(), c]); // t . e = t . l
+        es.push([s * phi.cos(), s * phi.sin(), -c]); // t . e = -t . l
+    }
+    let n = es.len();
+    let cols = hair_columns(&vec![z; n], &vec![l; n], &es, &vec![20.0; n]);
+    let out = program.cpu::<f64>(n, &columns(&cols), &HAIR_OUTPUTS);
+    for i in 0..n {
+        let (printed, mirror) = (out[1][i], out[2][i]);
+        let expect_printed = if i % 2 == 0 { 1.0 } else { kk_specular(z, l, es[i], 20.0, false) };
+        assert!((printed - expect_printed).abs() < 1e-12, "printed at {i}: {printed}");
+        if i % 2 == 1 {
+            assert!((mirror - 1.0).abs() < 1e-12, "mirror at {i}: {mirror}");
+            assert!(printed < 1e-3, "the printed form is dark on the mirror cone: {printed}");
+        }
+    }
+    // Where the peak falls, scanning e in the plane of t and l: the printed form peaks at the
+    // angle of l itself (back-scatter), the mirror form at its mirror image about the normal plane.
+    let scan: Vec<V3> = (0..=360).map(|k| (k as f64 * 0.5f64).to_radians()).map(|b| [b.sin(), 0.0, b.cos()]).collect();
+    let n = scan.len();
+    let cols = hair_columns(&vec![z; n], &vec![l; n], &scan, &vec![40.0; n]);
+    let out = program.cpu::<f64>(n, &columns(&cols), &HAIR_OUTPUTS);
+    let argmax = |c: &[f64]| (0..n).max_by(|i, j| c[*i].total_cmp(&c[*j])).unwrap();
+    assert_eq!(argmax(&out[1]), 100, "printed peak at 50 degrees (e = l)");
+    assert_eq!(argmax(&out[2]), 260, "mirror peak at 130 degrees");
+    // Kajiya & Kay eq. 13: the Lambert integral of l . n(theta) over the lit half cylinder,
+    // n = b' cos(theta) + l' sin(theta), is 2 sin(t, l) (K_d = 2 k_d r with k_d = r = 1).
+    let mut rng = Rng(5);
+    let (mut ts, mut ls) = (vec![], vec![]);
+    for _ in 0..64 {
+        ts.push(random_unit(&mut rng));
+        ls.push(random_unit(&mut rng));
+    }
+    let cols = hair_columns(&ts, &ls, &ls, &vec![1.0; 64]);
+    let out = program.cpu::<f64>(64, &columns(&cols), &HAIR_OUTPUTS);
+    for i in 0..64 {
+        let (t, l) = (ts[i], ls[i]);
+        let lp = unit(add(l, scale(t, -dot(t, l)))); // eq. 10
+        let b = unit(cross(l, t)); // eq. 11
+        let steps = 4000;
+        let integral: f64 = (0..steps)
+            .map(|k| {
+                let th = (k as f64 + 0.5) * std::f64::consts::PI / steps as f64;
+                dot(l, add(scale(b, th.cos()), scale(lp, th.sin()))) * std::f64::consts::PI / steps as f64
+            })
+            .sum();
+        assert!((out[0][i] - integral / 2.0).abs() < 1e-6, "{} vs {}", out[0][i], integral / 2.0);
+    }
+}
+
+const HAIR_SUMS: &str = "#include <lighting.sl>
+surface hairsums(varying vector tt = 0; varying normal n = 0; varying vector v = 0;
+                 varying float kd = 1, ks = 1, p = 1;
+                 output varying color kk = 0, km = 0, bk = 0)
+{
+    kk = kajiya_kay(tt, v, kd, ks, p);
+    km = kajiya_kay_mirror(tt, v, kd, ks, p);
+    bk = banks(tt, n, v, kd, ks, p);
+    Ci = 0; Oi = 1;
+}";
+
+#[test]
+fn hair_sums_over_the_lights_match_the_port() {
+    let program = lit(HAIR_SUMS, "hairsums", sum_lights());
+    let count = 1000;
+    let mut rng = Rng(13);
+    let names = ["tt", "n", "v", "kd", "ks", "p", "L[0]", "Cl[0]", "L[2]", "Cl[2]"];
+    let mut cols: Vec<(&'static str, Vec<f64>)> = names.iter().map(|n| (*n, Vec::new())).collect();
+    for _ in 0..count {
+        let row: Vec<Vec<f64>> = vec![
+            scale(random_unit(&mut rng), rng.range(0.5, 2.0)).to_vec(),
+            scale(random_unit(&mut rng), rng.range(0.5, 2.0)).to_vec(),
+            random_unit(&mut rng).to_vec(),
+            vec![rng.range(0.0, 1.0)],
+            vec![rng.range(0.0, 1.0)],
+            vec![rng.range(1.0, 60.0)],
+            scale(random_unit(&mut rng), rng.range(0.2, 5.0)).to_vec(),
+            vec![rng.unit(), rng.unit(), rng.unit()],
+            scale(random_unit(&mut rng), rng.range(0.2, 5.0)).to_vec(),
+            vec![rng.unit(), rng.unit(), rng.unit()],
+        ];
+        for (c, x) in cols.iter_mut().zip(row) {
+            c.1.extend(x);
+        }
+    }
+    let col = |name: &str| cols.iter().find(|(n, _)| *n == name).unwrap().1.clone();
+    let (t, n, v, kd, ks, p) = (col("tt"), col("n"), col("v"), col("kd"), col("ks"), col("p"));
+    let lights = [(col("L[0]"), col("Cl[0]")), (col("L[2]"), col("Cl[2]"))];
+    let mut want: Vec<Vec<f64>> = vec![Vec::new(); 3];
+    for i in 0..count {
+        let (ti, ni, vi) = (at(&t, i), at(&n, i), at(&v, i));
+        let mut sums = [[0.0; 3]; 3];
+        for (lc, cc) in &lights {
+            let (li, ci) = (at(lc, i), at(cc, i));
+            let d = kk_diffuse(ti, li);
+            let printed = kd[i] * d + ks[i] * kk_specular(ti, li, vi, p[i], false);
+            let mirror = kd[i] * d + ks[i] * kk_specular(ti, li, vi, p[i], true);
+            let banks = dot(unit(ni), unit(li)).max(0.0) * mirror;
+            for (s, w) in sums.iter_mut().zip([printed, mirror, banks]) {
+                *s = add(*s, scale(ci, w));
+            }
+        }
+        for k in 0..3 {
+            want[k].extend_from_slice(&sums[k]);
+        }
+    }
+    let inputs = columns(&cols);
+    let outputs = ["kk", "km", "bk"];
+    let f64_out = program.cpu::<f64>(count, &inputs, &outputs);
+    for k in 0..3 {
+        close(&format!("f64 {}", outputs[k]), &f64_out[k], &want[k], 1e-12);
+    }
+    let f32_out = program.cpu::<f32>(count, &inputs, &outputs);
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let g = program.gpu(&gpu, count, &inputs, &outputs);
+    for k in 0..3 {
+        let e = close(&format!("gpu {}", outputs[k]), &g[k], &f32_out[k], GPU_REL);
+        eprintln!("gpu {} vs f32: {e:e}", outputs[k]);
+    }
+}

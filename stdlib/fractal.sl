@@ -147,4 +147,115 @@ float fbm_filtered(point p; float H, lacunarity, octaves, width)
     return fbm(p, H, lac, min(octaves, -log(w) / max(log(lac), 1e-6)));
 }
 
+// The largest |offset| the multiplicative functions (multifractal, hetero_terrain) use: a larger
+// one is taken as +-PATINA_FRACTAL_MAX_OFFSET. Musgrave: the multifractal "approaches a flat plane
+// as offset gets large (i.e., around 100 or so)" (T&M L10228), so nothing is lost at 1e4.
+#ifndef PATINA_FRACTAL_MAX_OFFSET
+#define PATINA_FRACTAL_MAX_OFFSET 1e4
+#endif
+
+// The bound on multifractal's running product: |value| is clamped to this after every octave.
+#define PATINA_FRACTAL_MAX_PRODUCT 1e30
+
+// Musgrave's multiplicative-cascade multifractal (T&M ch. 14, L10211-10232): the product over
+// i < floor(octaves) of (snoise3(p lacunarity^i) + offset) * lacunarity^(-H i); 1 for octaves 0
+// (the empty product). offset 0 is "heterogeneous in the extreme", about 0.8 gives "a very nice,
+// heterogeneous terrain" (Fig. 14.3). Whole octaves only, as printed ("octaves is not real-valued,
+// as this function would behave badly in LOD schemes"). Musgrave warns that the range "varies
+// widely ... by many orders of magnitude" and that with more octaves it "will either converge to
+// zero or diverge to infinity": rescale the result (he divides by its maximum over a patch).
+// Guards: octaves clamped to [0, 30], H >= 0, lacunarity in [1, 8], offset to
+// +-PATINA_FRACTAL_MAX_OFFSET, and the running product to +-PATINA_FRACTAL_MAX_PRODUCT (1e30)
+// after each octave, so that no octave overflows (each factor is at most 1e4 + 1 in magnitude:
+// 1e34 < the f32 maximum); a product that converges to 0 underflows to 0, which is finite.
+float multifractal(point p; float H, lacunarity, octaves, offset)
+{
+    float h = max(H, 0);
+    float lac = clamp(lacunarity, 1, 8);
+    float n = floor(clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES));
+    float o = clamp(offset, -PATINA_FRACTAL_MAX_OFFSET, PATINA_FRACTAL_MAX_OFFSET);
+    float value = 1;
+    point pp = p;
+    float i;
+    for (i = 0; i < n; i += 1) {
+        value = clamp(value * ((snoise3(pp) + o) * pow(lac, -h * i)),
+                      -PATINA_FRACTAL_MAX_PRODUCT, PATINA_FRACTAL_MAX_PRODUCT);
+        pp = pp * lac;
+    }
+    return value;
+}
+
+// Musgrave's heterogeneous terrain, "statistics by altitude" (T&M ch. 16, Hetero_Terrain,
+// L11590-11655): value = offset + snoise3(p); then for each further octave i,
+// increment = (snoise3(p lacunarity^i) + offset) * lacunarity^(-H i) * clamp(value, -1, 1),
+// value += increment; the fractional remainder of octaves scales the next octave's increment
+// (L11640-11647). Low areas ("sea level", value near 0) damp the finer octaves and stay smooth;
+// high areas grow jagged. Errata and decisions: the printed loop header `for (l=1; i<octaves; l++)`
+// (L11623) is the loop over i = 1 .. octaves - 1; the exponent array computed once for all
+// parameters (H-R5) is pow(lacunarity, -H i) per octave; the altitude that weights each increment
+// is clamped to [-1, 1], as the text suggests ("we may need to clamp the highest value of the
+// weighting variable to 1.0, to prevent the sum from diverging", L11657; unclamped, the maximum
+// grows from 2.6 to 24 between 2 and 12 octaves at offset 0.5, catalogue H-R2), and below -1 as
+// well, so that negative altitudes cannot grow either. Departure: the first octave is weighted by
+// clamp(octaves, 0, 1) like the others, so octaves 0 gives 0 and the result is continuous in
+// `octaves` (the listing always adds the first octave). Guards: octaves clamped to [0, 30], H >= 0,
+// lacunarity in [1, 8], offset to +-PATINA_FRACTAL_MAX_OFFSET; then
+// |value| <= 31 (|offset| + 1) whatever the octaves.
+float hetero_terrain(point p; float H, lacunarity, octaves, offset)
+{
+    float h = max(H, 0);
+    float lac = clamp(lacunarity, 1, 8);
+    float oct = clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES);
+    float o = clamp(offset, -PATINA_FRACTAL_MAX_OFFSET, PATINA_FRACTAL_MAX_OFFSET);
+    float value = clamp(oct, 0, 1) * (o + snoise3(p));
+    point pp = p * lac;
+    float i;
+    for (i = 1; i < oct; i += 1) {
+        float increment = (snoise3(pp) + o) * pow(lac, -h * i) * clamp(value, -1, 1);
+        value += clamp(oct - i, 0, 1) * increment;
+        pp = pp * lac;
+    }
+    return value;
+}
+
+// Musgrave's vector-valued noise VecNoise (T&M ch. 15, L10370-10380): three signed noises at p,
+// p + 3.33 and p + 7.77 (each component displaced). Each component is in [-1, 1]. Named with the
+// prefix so as not to collide with the vector noises of stdlib/noise.sl.
+vector musgrave_vecnoise(point p)
+{
+    return vector(snoise3(p), snoise3(p + 3.33), snoise3(p + 7.77));
+}
+
+// Musgrave's distorted noise DistNoise (T&M ch. 15, L10350-10412): the noise of a domain
+// displaced by a random vector, snoise3(p + distortion * musgrave_vecnoise(p + 0.5)); the 0.5
+// "misregisters" the lattices (gradient noise is 0 at lattice points, L10386). In [-1, 1];
+// distortion 0 gives snoise3(p). "About four times as expensive" as the noise (L10388).
+// Erratum: the RenderMan version (L10413-10434) writes `point offset = snoise(Pt + ...)`, a float
+// noise promoted to a point (the same displacement in x, y and z); this is the C++ version's
+// vector noise. Guard: |distortion| is clamped to 1e30, so p + distortion * (a vector in
+// [-1, 1]^3) stays finite for |p| below 3e38.
+float distnoise(point p; float distortion)
+{
+    float d = clamp(distortion, -1e30, 1e30);
+    return snoise3(p + d * musgrave_vecnoise(p + 0.5));
+}
+
+// Musgrave's DistfBm (named at T&M L10388, "fBm constructed using DistNoise() ... as the basis
+// function"): fbm's sum with distnoise(p lacunarity^i, distortion) in place of snoise3, the same
+// fractional last octave and guards. Four noise evaluations per octave.
+float distfbm(point p; float H, lacunarity, octaves, distortion)
+{
+    float h = max(H, 0);
+    float lac = clamp(lacunarity, 1, 8);
+    float oct = clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES);
+    float value = 0;
+    point pp = p;
+    float i;
+    for (i = 0; i < oct; i += 1) {
+        value += clamp(oct - i, 0, 1) * distnoise(pp, distortion) * pow(lac, -h * i);
+        pp = pp * lac;
+    }
+    return value;
+}
+
 #endif

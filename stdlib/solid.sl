@@ -1,6 +1,446 @@
-// stdlib/solid.sl: see docs/stdlib/solid.md (being written for issue 7).
+// Hart's parameterized solid texture (Hart, Carr, Kameya, Tibbitts & Coleman, "Antialiased
+// Parameterized Solid Texturing", 1999: shared/seeds/004_dc0e594aa54d1617.txt L85-297, digest
+// shared/notes/seed-digest.md §3.1): one formula for wood, marble, clouds and fire,
+//
+//     p(s) = c( q(s) + sum_i a_i n(T_i(s)) )                                  (1), L93
+//
+// with q the quadric [s t r 1] Q [s t r 1]^T (3)-(4), L108-115, n Perlin noise, a_i amplitudes,
+// T_i affine maps, and c a colour map indexed modulo 1 or clamped (2), L102. Its antialiasing
+// (L176-297): the analytic gradient of f = q + sum a_i n_i (10)-(12) gives the spread of colour
+// indices over a pixel, and the colour map is box-filtered over that spread (9), L193. Here the
+// noise terms finer than the pixel also fade to their mean (Musgrave's filteredsnoise fade,
+// T&M L10447-10450), so a filtered texture loses its octaves as the filter width grows.
+// docs/stdlib/solid.md has the formulas, the errata decisions and the measured precision.
+//
+// Conventions. n is RenderMan's unsigned noise, noise3 (stdlib/noise.sl: Perlin's improved
+// noise scaled into [0, 1], 0.5 at lattice points): APST's noise is in [0, 1] too (Rayshade's
+// lattice noise, L346), and the seed's colour maps (clamped blue to white for clouds) expect
+// non-negative indices. The noise terms are T_i(s) = lacunarity^i (s T) + phase for
+// i = 0 .. nterms - 1, with s T the affine map of the row vector s by the 4x4 matrix T (its upper
+// 3x3 part and its translation row; the fourth column is ignored), and a_i = amp gain^i: the
+// seed's fractal sums sum_{i=1}^{4} 2^-i n(2^i s) are T = 2 I, lacunarity 2, amp 1/2, gain 1/2,
+// nterms 4. Q is used as given (q = sum_jk x_j Q_jk x_k with x = (s, t, r, 1)), so a
+// non-symmetric Q means its symmetric part.
+//
+// Errata (seed-digest §7): E8, the colour map printed `clut[round(n mod clamp(f))]`, is read as
+// "modulo 1 or clamp to [0, 1] by a flag", and the table is interpolated linearly through its
+// entries (the wood map is "a modulo-one linear interpolation", L137); E9, the gradient of q
+// printed as 2 [s t r 0] Q J, is 2 [s t r 1] Q J (the linear terms D, G, I count) and J's third
+// row is (dr/dx, dr/dy); E12, the unbalanced parentheses of (7) and (8), are read as in the
+// digest. APST's summed-area colour table (13)-(15) is replaced by its exact equivalent for a
+// piecewise-linear map: the box average is the difference of the map's closed-form integral
+// (hart_colormap). APST's rule "w >= N: return the mean of the table" is not used: the box
+// average tends to that mean by itself in the modulo mode, and in the clamp mode it tends to the
+// mean of the two end colours (the map is extended by them), which keeps it continuous.
+//
+// Guards, so that every finite input gives a finite result on both backends: coordinates are
+// clamped to +-1e9 (above 2^23 the f32 noise is 0 anyway), Q's entries to +-1e18, T's entries
+// and the phase to +-1e9, nterms to [0, 8] (APST: "typically between four and eight", L126),
+// amp to +-1e6, gain to [-8, 8], lacunarity to [1, 8], filter widths to [0, 1e30] (their
+// absolute value). Then |q| < 2e37, the noise sum < 2e13 and every gradient component < 1e30.
 
 #ifndef PATINA_SOLID_SL
 #define PATINA_SOLID_SL
+
+#include <noise.sl>
+
+#define HART_CLAMP 0
+#define HART_MOD 1
+#define HART_MAX_TERMS 8
+// The size of a colour table: hart_colormap takes a color[HART_MAX_COLORS] and the count n of
+// entries used (n <= HART_MAX_COLORS). A fixed size, because an unsized `color clut[]` parameter
+// currently reads its first element at every index (a compiler defect, reported with issue 7).
+#define HART_MAX_COLORS 8
+
+// The guarded point: each coordinate clamped to +-1e9.
+point hart_clamp_point(point p)
+{
+    return point(clamp(p[0], -1e9, 1e9), clamp(p[1], -1e9, 1e9), clamp(p[2], -1e9, 1e9));
+}
+
+// A guarded matrix entry.
+float hart_entry(matrix m; float row, col; float bound)
+{
+    return clamp(comp(m, row, col), -bound, bound);
+}
+
+// The quadric q(s) = [s t r 1] Q [s t r 1]^T of APST (3)-(4), L108-115:
+// A s^2 + 2B st + 2C sr + 2D s + E t^2 + 2F tr + 2G t + H r^2 + 2I r + J for the symmetric
+// Q = [[A B C D] [B E F G] [C F H I] [D G I J]]. Computed as sum_k (sum_j x_j Q_jk) x_k with
+// x = (s, t, r, 1).
+float hart_quadric(point p; matrix Q)
+{
+    point s = hart_clamp_point(p);
+    float x[4] = {s[0], s[1], s[2], 1};
+    float q = 0;
+    constant float j, k;
+    for (k = 0; k < 4; k += 1) {
+        float row = 0;
+        for (j = 0; j < 4; j += 1) {
+            row += x[j] * hart_entry(Q, j, k, 1e18);
+        }
+        q += row * x[k];
+    }
+    return q;
+}
+
+// The gradient of the quadric with respect to s: sum_j x_j (Q_jk + Q_kj) for k = 0 .. 2, that is
+// 2 ([s t r 1] Q)_{1..3} for a symmetric Q (APST (11) with erratum E9: the 1 keeps the linear
+// terms D, G, I).
+vector hart_quadric_gradient(point p; matrix Q)
+{
+    point s = hart_clamp_point(p);
+    float x[4] = {s[0], s[1], s[2], 1};
+    float g[3] = {0, 0, 0};
+    constant float j, k;
+    for (k = 0; k < 3; k += 1) {
+        for (j = 0; j < 4; j += 1) {
+            g[k] += x[j] * hart_entry(Q, j, k, 1e18) + hart_entry(Q, k, j, 1e18) * x[j];
+        }
+    }
+    return vector(g[0], g[1], g[2]);
+}
+
+// The affine map s T of a row vector: (s T)_k = sum_j s_j T_jk + T_3k, k = 0 .. 2, with T's
+// entries clamped to +-1e9.
+point hart_affine(point s; matrix T)
+{
+    float y[3] = {0, 0, 0};
+    constant float j, k;
+    for (k = 0; k < 3; k += 1) {
+        y[k] = hart_entry(T, 3, k, 1e9);
+        for (j = 0; j < 3; j += 1) {
+            y[k] += s[j] * hart_entry(T, j, k, 1e9);
+        }
+    }
+    return point(y[0], y[1], y[2]);
+}
+
+// The largest stretch of T's linear part: max over k of sum_j |T_jk| (the most any coordinate of
+// s T moves when each coordinate of s moves by 1): a noise term's feature frequency.
+float hart_stretch(matrix T)
+{
+    float sigma = 0;
+    constant float j, k;
+    for (k = 0; k < 3; k += 1) {
+        float col = 0;
+        for (j = 0; j < 3; j += 1) {
+            col += abs(hart_entry(T, j, k, 1e9));
+        }
+        sigma = max(sigma, col);
+    }
+    return sigma;
+}
+
+// Vector interpolation in perlin_lerp's form a + t (b - a).
+vector hart_vlerp(float t; vector a, b)
+{
+    return a + t * (b - a);
+}
+
+// The gradient of a lattice point as a vector: perlin_grad is linear in its offset, so its
+// components are perlin_grad at the unit vectors.
+vector hart_grad_vector(int hash)
+{
+    return vector(perlin_grad(hash, 1, 0, 0), perlin_grad(hash, 0, 1, 0), perlin_grad(hash, 0, 0, 1));
+}
+
+#define HART_P(i) hart_p[(i) & 255]
+
+// The analytic gradient of Perlin's improved noise (perlin_improved_noise of stdlib/noise.sl:
+// the same cell, hash and gradients; Perlin's table is repeated here): with u = fade(x),
+// u' = 30 x^2 (x - 1)^2 and n_abc the corner dot products,
+// dn/dx = u' lerp(w, lerp(v, n100 - n000, n110 - n010), lerp(v, n101 - n001, n111 - n011))
+// plus the trilinear interpolation of the corners' gradient vectors (and alike in y and z).
+// This is APST's DNoise (12), L226. Continuous (the noise is C2).
+vector hart_noise_gradient(point p)
+{
+    constant int hart_p[256] = {
+        151, 160, 137,  91,  90,  15, 131,  13, 201,  95,  96,  53, 194, 233,   7, 225,
+        140,  36, 103,  30,  69, 142,   8,  99,  37, 240,  21,  10,  23, 190,   6, 148,
+        247, 120, 234,  75,   0,  26, 197,  62,  94, 252, 219, 203, 117,  35,  11,  32,
+         57, 177,  33,  88, 237, 149,  56,  87, 174,  20, 125, 136, 171, 168,  68, 175,
+         74, 165,  71, 134, 139,  48,  27, 166,  77, 146, 158, 231,  83, 111, 229, 122,
+         60, 211, 133, 230, 220, 105,  92,  41,  55,  46, 245,  40, 244, 102, 143,  54,
+         65,  25,  63, 161,   1, 216,  80,  73, 209,  76, 132, 187, 208,  89,  18, 169,
+        200, 196, 135, 130, 116, 188, 159,  86, 164, 100, 109, 198, 173, 186,   3,  64,
+         52, 217, 226, 250, 124, 123,   5, 202,  38, 147, 118, 126, 255,  82,  85, 212,
+        207, 206,  59, 227,  47,  16,  58,  17, 182, 189,  28,  42, 223, 183, 170, 213,
+        119, 248, 152,   2,  44, 154, 163,  70, 221, 153, 101, 155, 167,  43, 172,   9,
+        129,  22,  39, 253,  19,  98, 108, 110,  79, 113, 224, 232, 178, 185, 112, 104,
+        218, 246,  97, 228, 251,  34, 242, 193, 238, 210, 144,  12, 191, 179, 162, 241,
+         81,  51, 145, 235, 249,  14, 239, 107,  49, 192, 214,  31, 181, 199, 106, 157,
+        184,  84, 204, 176, 115, 121,  50,  45, 127,   4, 150, 254, 138, 236, 205,  93,
+        222, 114,  67,  29,  24,  72, 243, 141, 128, 195,  78,  66, 215,  61, 156, 180
+    };
+    float x = p[0], y = p[1], z = p[2];
+    float cx = floor(x), cy = floor(y), cz = floor(z);
+    x -= cx;
+    y -= cy;
+    z -= cz;
+    int X = int(cx - 256 * floor(cx * 0.00390625)) & 255;
+    int Y = int(cy - 256 * floor(cy * 0.00390625)) & 255;
+    int Z = int(cz - 256 * floor(cz * 0.00390625)) & 255;
+    float u = perlin_fade(x), v = perlin_fade(y), w = perlin_fade(z);
+    float du = 30 * x * x * (x * (x - 2) + 1);
+    float dv = 30 * y * y * (y * (y - 2) + 1);
+    float dw = 30 * z * z * (z * (z - 2) + 1);
+    int A = HART_P(X) + Y, AA = HART_P(A) + Z, AB = HART_P(A + 1) + Z;
+    int B = HART_P(X + 1) + Y, BA = HART_P(B) + Z, BB = HART_P(B + 1) + Z;
+    int h000 = HART_P(AA), h100 = HART_P(BA), h010 = HART_P(AB), h110 = HART_P(BB);
+    int h001 = HART_P(AA + 1), h101 = HART_P(BA + 1), h011 = HART_P(AB + 1), h111 = HART_P(BB + 1);
+    float n000 = perlin_grad(h000, x, y, z), n100 = perlin_grad(h100, x - 1, y, z);
+    float n010 = perlin_grad(h010, x, y - 1, z), n110 = perlin_grad(h110, x - 1, y - 1, z);
+    float n001 = perlin_grad(h001, x, y, z - 1), n101 = perlin_grad(h101, x - 1, y, z - 1);
+    float n011 = perlin_grad(h011, x, y - 1, z - 1), n111 = perlin_grad(h111, x - 1, y - 1, z - 1);
+    vector g = hart_vlerp(w,
+        hart_vlerp(v, hart_vlerp(u, hart_grad_vector(h000), hart_grad_vector(h100)),
+                      hart_vlerp(u, hart_grad_vector(h010), hart_grad_vector(h110))),
+        hart_vlerp(v, hart_vlerp(u, hart_grad_vector(h001), hart_grad_vector(h101)),
+                      hart_vlerp(u, hart_grad_vector(h011), hart_grad_vector(h111))));
+    float gx = du * perlin_lerp(w, perlin_lerp(v, n100 - n000, n110 - n010),
+                                   perlin_lerp(v, n101 - n001, n111 - n011));
+    float gy = dv * perlin_lerp(w, perlin_lerp(u, n010 - n000, n110 - n100),
+                                   perlin_lerp(u, n011 - n001, n111 - n101));
+    float gz = dw * perlin_lerp(v, perlin_lerp(u, n001 - n000, n101 - n100),
+                                   perlin_lerp(u, n011 - n010, n111 - n110));
+    return g + vector(gx, gy, gz);
+}
+
+#undef HART_P
+
+// The weight of a noise term of frequency k (cycles per unit of s) at filter width fw:
+// 1 - smoothstep(0.2, 0.6, k fw), Musgrave's filteredsnoise fade (T&M L10447-10450): 1 while
+// the term's features span more than 5 filter widths, 0 once they span fewer than 1.7.
+float hart_term_weight(float k, fw)
+{
+    return 1 - smoothstep(0.2, 0.6, k * fw);
+}
+
+// The guarded phase.
+vector hart_clamp_phase(vector phase)
+{
+    return vector(clamp(phase[0], -1e9, 1e9), clamp(phase[1], -1e9, 1e9), clamp(phase[2], -1e9, 1e9));
+}
+
+// APST's classification f(s) = q(s) + sum_{i < nterms} a_i n(T_i(s)) (1), filtered:
+// a_i = amp gain^i, T_i(s) = lacunarity^i (s T) + phase, n = noise3, and each term is
+// a_i (0.5 + w_i (n - 0.5)) with w_i = hart_term_weight(lacunarity^i stretch(T), filterwidth)
+// (filterwidth: the filter width of p in texture space, or 0 for no filtering): a term finer
+// than the filter fades to its mean 0.5 a_i, so f tends to q + 0.5 sum a_i as the width grows.
+// A fractional nterms weights its last term by the fraction (continuous in nterms). Guards: see
+// the file's header.
+float hart_solid(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
+                 vector phase; float filterwidth)
+{
+    point s = hart_clamp_point(p);
+    float nt = clamp(nterms, 0, HART_MAX_TERMS);
+    float lac = clamp(lacunarity, 1, 8);
+    float fw = min(abs(filterwidth), 1e30);
+    vector ph = hart_clamp_phase(phase);
+    float sigma = hart_stretch(T);
+    point ts = hart_affine(s, T);
+    float f = hart_quadric(s, Q);
+    float a = clamp(amp, -1e6, 1e6), g = clamp(gain, -8, 8), k = 1;
+    float i;
+    for (i = 0; i < nt; i += 1) {
+        float w = hart_term_weight(k * sigma, fw);
+        f += clamp(nt - i, 0, 1) * a * (0.5 + w * (0.5 * snoise3(k * ts + ph)));
+        a *= g;
+        k *= lac;
+    }
+    return f;
+}
+
+// The analytic gradient of hart_solid with respect to p (APST (10)-(12) with E9): the quadric's
+// 2 ([s t r 1] Q)_{1..3} plus, per term, a_i w_i lacunarity^i L dn, with L the linear part of T
+// and dn the gradient of noise3 at T_i(s) (0.5 PATINA_SNOISE_SCALE hart_noise_gradient). The
+// faded weights w_i depend on the filter width only, so this is the gradient of the filtered f.
+// The screen-space filter width of f is |J^T grad| with J the Jacobian of p over the pixel;
+// hart_filterwidth approximates it by |grad| times p's filter width.
+vector hart_solid_gradient(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
+                           vector phase; float filterwidth)
+{
+    point s = hart_clamp_point(p);
+    float nt = clamp(nterms, 0, HART_MAX_TERMS);
+    float lac = clamp(lacunarity, 1, 8);
+    float fw = min(abs(filterwidth), 1e30);
+    vector ph = hart_clamp_phase(phase);
+    float sigma = hart_stretch(T);
+    point ts = hart_affine(s, T);
+    vector grad = hart_quadric_gradient(s, Q);
+    float a = clamp(amp, -1e6, 1e6), g = clamp(gain, -8, 8), k = 1;
+    float i;
+    for (i = 0; i < nt; i += 1) {
+        float w = hart_term_weight(k * sigma, fw);
+        vector dn = (0.5 * PATINA_SNOISE_SCALE) * hart_noise_gradient(k * ts + ph);
+        // The chain rule through s T: (L dn)_j = sum_k T_jk dn_k.
+        vector ldn = vector(
+            hart_entry(T, 0, 0, 1e9) * dn[0] + hart_entry(T, 0, 1, 1e9) * dn[1] + hart_entry(T, 0, 2, 1e9) * dn[2],
+            hart_entry(T, 1, 0, 1e9) * dn[0] + hart_entry(T, 1, 1, 1e9) * dn[1] + hart_entry(T, 1, 2, 1e9) * dn[2],
+            hart_entry(T, 2, 0, 1e9) * dn[0] + hart_entry(T, 2, 1, 1e9) * dn[1] + hart_entry(T, 2, 2, 1e9) * dn[2]);
+        grad += (clamp(nt - i, 0, 1) * a * w * k) * ldn;
+        a *= g;
+        k *= lac;
+    }
+    return grad;
+}
+
+// The colour-index filter width of APST (9), L193: |grad f| times the filter width of p (an
+// isotropic footprint), clamped to [0, 1e30]. The gradient's components are first clamped to
+// +-1e18 so that the length cannot overflow.
+float hart_filterwidth(vector grad; float filterwidth)
+{
+    vector g = vector(clamp(grad[0], -1e18, 1e18), clamp(grad[1], -1e18, 1e18), clamp(grad[2], -1e18, 1e18));
+    return min(min(abs(filterwidth), 1e30) * length(g), 1e30);
+}
+
+// The piecewise-linear colour ramp through clut[0 .. m] at x in segment units (knot j at x = j;
+// x outside [0, m] extrapolates an end segment, which the callers avoid).
+color hart_ramp_at(float x; color clut[HART_MAX_COLORS]; float m)
+{
+    float j = clamp(floor(x), 0, max(m - 1, 0));
+    int k = int(j);
+    return clut[k] + (x - j) * (clut[k + 1] - clut[k]);
+}
+
+// The ramp's integral from 0 to y in segment units, y in [0, m]: the whole segments' trapezoids
+// plus the part of the segment holding y.
+color hart_ramp_integral(float y; color clut[HART_MAX_COLORS]; float m)
+{
+    float j = clamp(floor(y), 0, max(m - 1, 0));
+    int kj = int(j);
+    float t = y - j;
+    color acc = 0;
+    float k;
+    for (k = 0; k < j; k += 1) {
+        int ik = int(k);
+        acc += 0.5 * (clut[ik] + clut[ik + 1]);
+    }
+    return acc + t * clut[kj] + (0.5 * t * t) * (clut[kj + 1] - clut[kj]);
+}
+
+// The ramp with the mode's extension at x in segment units: modulo m, or clamped to [0, m].
+color hart_ramp_ext(float x; color clut[HART_MAX_COLORS]; float m; float mode)
+{
+    float y = mode == HART_MOD ? x - m * floor(x / m) : clamp(x, 0, m);
+    return hart_ramp_at(y, clut, m);
+}
+
+// APST's colour map c(f) (2) with its box filter (9): the average over [f - width/2,
+// f + width/2] of the piecewise-linear ramp through the n colours clut[0 .. n-1] (n at most HART_MAX_COLORS) at
+// f = 0, 1/(n-1), .., 1, extended modulo 1 (mode HART_MOD: the ramp repeats, jumping from
+// clut[n-1] back to clut[0] at each integer, as the wood map does) or clamped (HART_CLAMP:
+// clut[0] below 0, clut[n-1] above 1). Width 0 gives the point value. The average is exact
+// for any width: below 1e-6 segments, the point value; below one segment (the interval holds at
+// most one knot), the length-weighted midpoint values of its two linear pieces; otherwise the
+// difference of the ramp's closed-form integral over the width (whole periods times the
+// period's integral in the modulo mode; the end colours times the lengths outside [0, 1] in the
+// clamp mode). As the width grows the result tends to the ramp's mean (modulo) or to the mean of
+// the end colours (clamp). n below 2 gives clut[0]. Widths are taken as |width|, at most 1e30.
+color hart_colormap(float f, width; float mode; color clut[HART_MAX_COLORS]; float n)
+{
+    float m = max(floor(min(n, HART_MAX_COLORS)) - 1, 0);
+    if (m == 0)
+        return clut[0];
+    float h = min(0.5 * m * min(abs(width), 1e30), 1e30);
+    float u = mode == HART_MOD ? m * (f - floor(f)) : m * f;
+    float a = u - h, b = u + h;
+    if (mode != HART_MOD) {
+        if (b <= 0)
+            return clut[0];
+        if (a >= m)
+            return clut[int(m)];
+    }
+    if (h < 5e-7)
+        return hart_ramp_ext(u, clut, m, mode);
+    if (h < 0.5) {
+        float kb = floor(b);
+        if (floor(a) == kb)
+            return hart_ramp_ext(u, clut, m, mode);
+        return ((kb - a) * hart_ramp_ext(0.5 * (a + kb), clut, m, mode)
+              + (b - kb) * hart_ramp_ext(0.5 * (kb + b), clut, m, mode)) / (b - a);
+    }
+    if (mode == HART_MOD) {
+        color period = hart_ramp_integral(m, clut, m);
+        float pa = floor(a / m), pb = floor(b / m);
+        color cb = pb * period + hart_ramp_integral(b - m * pb, clut, m);
+        color ca = pa * period + hart_ramp_integral(a - m * pa, clut, m);
+        return (cb - ca) / (b - a);
+    }
+    float lo = max(a, 0), hi = min(b, m);
+    color inside = hart_ramp_integral(hi, clut, m) - hart_ramp_integral(lo, clut, m);
+    return ((lo - a) * clut[0] + inside + (b - hi) * clut[int(m)]) / (b - a);
+}
+
+// The unfiltered colour map: hart_colormap at width 0.
+color hart_colormap(float f; float mode; color clut[HART_MAX_COLORS]; float n)
+{
+    return hart_colormap(f, 0, mode, clut, n);
+}
+
+// The presets: APST's four fundamental textures (§2.2, L128-166) with the seed's parameters.
+// `fw` is the filter width of p in texture space (0: unfiltered). Each is
+// hart_colormap(f, hart_filterwidth(grad f, fw), mode, table) with f = hart_solid(...) and
+// grad f = hart_solid_gradient(...). The colours are this library's choice where the seed names
+// them only in words.
+
+// Wood (5), L132-139: f = s^2 + t^2 + n(4s, 4t, r): concentric cylinders about the r axis (Q with
+// A = E = 1), one noise term of amplitude 1 with T = diag(4, 4, 1); a modulo-one linear map from
+// a light earlywood to a darker latewood (rings of f = k, radius sqrt(k): the early rings wider).
+color hart_wood(point p; float fw)
+{
+    matrix Q = (1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0);
+    matrix T = (4, 0, 0, 0,  0, 4, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1);
+    constant color clut[HART_MAX_COLORS] = {
+        color(0.86, 0.66, 0.42), color(0.50, 0.30, 0.14), 0, 0, 0, 0, 0, 0};
+    float f = hart_solid(p, Q, 1, 1, 1, T, 1, vector(0), fw);
+    vector g = hart_solid_gradient(p, Q, 1, 1, 1, T, 1, vector(0), fw);
+    return hart_colormap(f, hart_filterwidth(g, fw), HART_MOD, clut, 2);
+}
+
+// Marble (7), L150-157: f = r + sum_{i=1}^{4} 2^-i n(2^i s) (Q with I = 1/2; T = 2 I,
+// lacunarity 2, amp and gain 1/2, 4 terms); a modulo-one table from a marble cross-section
+// (white, grey, a dark vein, grey, white: the same colour at both ends, so the repeat is seamless).
+color hart_marble(point p; float fw)
+{
+    matrix Q = (0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0.5,  0, 0, 0.5, 0);
+    matrix T = (2, 0, 0, 0,  0, 2, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
+    constant color clut[HART_MAX_COLORS] = {
+        color(0.93, 0.92, 0.89), color(0.85, 0.84, 0.82), color(0.62, 0.62, 0.66),
+        color(0.30, 0.30, 0.36), color(0.70, 0.70, 0.72), color(0.93, 0.92, 0.89), 0, 0};
+    float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
+    vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
+    return hart_colormap(f, hart_filterwidth(g, fw), HART_MOD, clut, 6);
+}
+
+// Clouds (6), L141-148: f = sum_{i=1}^{4} 2^-i n(2^i s) (Q = 0; T = 2 I, lacunarity 2, amp and
+// gain 1/2, 4 terms); a clamped linear map from blue to white.
+color hart_clouds(point p; float fw)
+{
+    matrix Q = 0;
+    matrix T = (2, 0, 0, 0,  0, 2, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
+    constant color clut[HART_MAX_COLORS] = {
+        color(0.25, 0.45, 0.85), color(1, 1, 1), 0, 0, 0, 0, 0, 0};
+    float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
+    vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
+    return hart_colormap(f, hart_filterwidth(g, fw), HART_CLAMP, clut, 2);
+}
+
+// Fire (8), L159-166: f = r + sum_{i=1}^{4} 2^-i n(2^i s, 0, 2^i r + phase) (Q with I = 1/2;
+// T = diag(2, 0, 2), lacunarity 2, amp and gain 1/2, 4 terms, phase (0, 0, phase): animating the
+// phase animates the flames). The seed states no colour map: a clamped black, red, orange,
+// yellow, white ramp.
+color hart_fire(point p; float phase, fw)
+{
+    matrix Q = (0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0.5,  0, 0, 0.5, 0);
+    matrix T = (2, 0, 0, 0,  0, 0, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
+    constant color clut[HART_MAX_COLORS] = {
+        color(0, 0, 0), color(0.75, 0.1, 0), color(1, 0.5, 0), color(1, 0.9, 0.3), color(1, 1, 1),
+        0, 0, 0};
+    float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0, 0, phase), fw);
+    vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0, 0, phase), fw);
+    return hart_colormap(f, hart_filterwidth(g, fw), HART_CLAMP, clut, 5);
+}
 
 #endif

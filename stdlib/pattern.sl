@@ -201,4 +201,104 @@ float filteredabs(float x, w)
     return (x * (x / h) + h) / 2;
 }
 
+// sin(2 pi t) for any finite t, with the range reduction done here (DESIGN §7: WGSL specifies sin
+// only on [-pi, pi]): r = t - floor(t + 1/2) is in [-1/2, 1/2] and exact for |t| < 2^22 in f32,
+// so sin sees 2 pi r in [-pi, pi] on both backends, the same argument bit for bit.
+// (2 pi as a literal, not 2 * PI: the WGSL backend's compute kernels read PI as 0, a compiler bug;
+// the literal rounds to 2 * PI exactly in f32 and is 2 pi to the last bit in f64.)
+float _patina_sin2pi(float t)
+{
+    float r = t - floor(t + 0.5);
+    return sin(6.283185307179586 * r);
+}
+
+#ifndef PATINA_PATTERN_MAX_TERMS
+#define PATINA_PATTERN_MAX_TERMS 30
+#endif
+
+// Peachey's spectral synthesis with sinusoids, antialiased by clamping (L1995-2027; catalogue
+// §1.4 and §2.4): the sum over f = minfreq, 2 minfreq, 4 minfreq, ... while f < maxfreq of
+// fade(f) sin(2 pi f x) / f, each term faded out as its frequency approaches the Nyquist limit
+// 0.5 / w of the filter width w (in the units of x): fade(f) = clamp(2 (cutoff - f) / cutoff, 0, 1)
+// with cutoff = 0.5 / w, i.e. clamp(2 - 4 f w, 0, 1): 1 below cutoff / 2, 0 from cutoff on, linear
+// between (Peachey's fade, L2021). Departure: Peachey takes cutoff = clamp(0.5 / swidth, 0, MAXFREQ),
+// which also fades the term in [MAXFREQ/2, MAXFREQ) when nothing is filtered; here maxfreq only
+// bounds the terms, so w = 0 gives the plain sum (L2003) and the result is continuous in w.
+// At most PATINA_PATTERN_MAX_TERMS (30) terms. Range reduction: x = floor(x) + frac(x) and
+// sin(2 pi f x) = sin(2 pi (frac(f floor(x)) + f frac(x))), with frac(f floor(x)) carried from
+// term to term by exact doubling, so an integer minfreq keeps full precision at any |x| (the phase
+// of the integer part is then exactly 0). Guards: minfreq <= 0 gives 0 (no terms); minfreq is
+// taken as at least 1e-30; a frequency that overflows is >= maxfreq and adds nothing. The loop
+// always runs its 30 iterations (a `break` on a varying condition would make the constant loop
+// counter varying), skipping the terms from maxfreq on. |result| < 2 / minfreq.
+float sinesum(float x, w, minfreq, maxfreq)
+{
+    // (No early return for minfreq <= 0: code after a varying return is under a varying
+    // condition, which the constant loop counter cannot be.)
+    float on = minfreq > 0 ? 1 : 0;
+    float f = max(minfreq, 1e-30);
+    float xi = floor(x);
+    float xf = x - xi;
+    float t = f * xi;
+    // Beyond 2^53 every float is an integer (in f32 and f64): the phase of the integer part is 0.
+    float phase = abs(t) < 1e30 ? t - floor(t) : 0;
+    float ww = max(w, 0);
+    float value = 0;
+    constant float i;
+    for (i = 0; i < PATINA_PATTERN_MAX_TERMS; i += 1) {
+        if (on != 0 && f < maxfreq) {
+            float fade = clamp(2 - 4 * f * ww, 0, 1);
+            value += fade * _patina_sin2pi(phase + f * xf) / f;
+        }
+        f *= 2;
+        phase = 2 * phase;
+        phase -= floor(phase);
+    }
+    return value;
+}
+
+// Peachey's brick (L1559-1620, with the printed listing's `th` read as `h`, L1612; catalogue
+// §3.6): 1 in a brick, 0 in the mortar. The brick repeats every (brickwidth + mortar) in s and
+// (brickheight + mortar) in t, with mortar / 2 on each side of a brick (MWF, MHF, L1576), and
+// alternate rows shifted by half a brick (L1598: odd rows, mod(tt / 2, 1) > 0.5). Sizes are
+// clamped to >= 0 and the periods to >= 1e-6.
+float brick(float s, t, brickwidth, brickheight, mortar)
+{
+    float m = max(mortar, 0);
+    float bmw = max(max(brickwidth, 0) + m, 1e-6), bmh = max(max(brickheight, 0) + m, 1e-6);
+    float mwf = m * 0.5 / bmw, mhf = m * 0.5 / bmh;
+    float ss = s / bmw, tt = t / bmh;
+    if (mod(tt * 0.5, 1) > 0.5)
+        ss += 0.5;
+    ss -= floor(ss);
+    tt -= floor(tt);
+    float w = step(mwf, ss) - step(1 - mwf, ss);
+    float h = step(mhf, tt) - step(1 - mhf, tt);
+    return w * h;
+}
+
+// The box-filtered brick: the exact mean of brick(s, t, ...) over the box
+// [s - swidth/2, s + swidth/2] x [t - twidth/2, t + twidth/2] (pass filterwidth(s),
+// filterwidth(t)). Peachey antialiases the brick with the integrals of its pulse trains (L2120-
+// 2141, the `sintegral` errata: the upper clamp, pattern.sl's filteredpulsetrain), but filters s
+// with the row shift of the point's own row, which is wrong once the box spans two rows. Here the
+// shift is exact: the brick is Weven(s) Heven(t) + Wodd(s) Hodd(t), with Heven, Hodd the
+// indicators of the even and odd rows' bricks in t (pulse trains of period 2) and Weven, Wodd the
+// s pulse trains unshifted and shifted by half a brick; the box mean of each product is the
+// product of the box means, each a filteredpulsetrain. swidth, twidth <= 0 filter nothing in that
+// direction (both <= 0 give brick(...) up to rounding at the mortar edges).
+float filteredbrick(float s, t, swidth, twidth, brickwidth, brickheight, mortar)
+{
+    float m = max(mortar, 0);
+    float bmw = max(max(brickwidth, 0) + m, 1e-6), bmh = max(max(brickheight, 0) + m, 1e-6);
+    float mwf = m * 0.5 / bmw, mhf = m * 0.5 / bmh;
+    float ss = s / bmw, tt = t / bmh;
+    float sw = swidth / bmw, tw = twidth / bmh;
+    float heven = filteredpulsetrain(0.5 + mhf, 2, tt + 0.5, tw);
+    float hodd = filteredpulsetrain(0.5 + mhf, 2, tt - 0.5, tw);
+    float weven = filteredpulsetrain(mwf, 1, ss, sw);
+    float wodd = filteredpulsetrain(mwf, 1, ss + 0.5, sw);
+    return weven * heven + wodd * hodd;
+}
+
 #endif

@@ -273,3 +273,521 @@ fn soft_shapes_match_the_papers_profile() {
         );
     }
 }
+
+#[test]
+fn booleans_are_the_papers_algebra() {
+    let program = shader(
+        &[("float", "a"), ("float", "b")],
+        &[("float", "u"), ("float", "i"), ("float", "d"), ("float", "na"), ("float", "dd")],
+        "u = soft_union(a, b); i = soft_intersection(a, b); d = soft_difference(a, b);\n\
+         na = soft_complement(a); dd = soft_intersection(a, soft_complement(b));",
+    );
+    let mut rng = Rng(11);
+    let mut a = vec![];
+    let mut b = vec![];
+    for k in 0..2000 {
+        let (x, y) = match k % 4 {
+            0 => (rng.unit(), rng.unit()),
+            1 => (1.0 - 1e-7 * rng.unit(), rng.unit()),
+            2 => (rng.range(-2.0, 3.0), rng.range(-2.0, 3.0)),
+            _ => ([0.0, 1.0, 0.5][k % 3], [1.0, 0.0, 1e-30][(k / 3) % 3]),
+        };
+        a.push(f(x));
+        b.push(f(y));
+    }
+    let n = a.len();
+    let mut inputs = Inputs::default();
+    inputs.add("a", a.clone()).add("b", b.clone());
+    let names = ["u", "i", "d", "na", "dd"];
+    for (run, precision) in cpu_both(&program, n, &inputs, &names).iter().zip(["f64", "f32"]) {
+        let eps = EPS[usize::from(precision == "f32")];
+        let mut worst = 0.0f64;
+        for k in 0..n {
+            let (x, y) = (a[k].clamp(0.0, 1.0), b[k].clamp(0.0, 1.0));
+            // The paper's forms (PH L77-80).
+            let expected = [x + y - x * y, x * y, x - x * y, 1.0 - x, x * (1.0 - y)];
+            for (j, e) in expected.iter().enumerate() {
+                let got = run[j][k];
+                assert!((0.0..=1.0).contains(&got), "{} {precision} ({x}, {y}) = {got}", names[j]);
+                let err = (got - e).abs();
+                worst = worst.max(err / eps);
+                assert!(err <= 4.0 * eps, "{} {precision} ({x}, {y}): {got} against {e}", names[j]);
+            }
+            // Difference is intersection with the complement, exactly.
+            assert_eq!(run[2][k], run[4][k]);
+        }
+        println!("booleans {precision}: worst error {worst} eps");
+    }
+}
+
+#[test]
+fn step_opacity_is_one_minus_exp_without_cancellation() {
+    let program = shader(&[("float", "x")], &[("float", "alpha")], "alpha = volume_opacity(x);");
+    let mut x: Vec<f64> = (0..4000).map(|i| f(10f64.powf(-30.0 + 31.75 * f64::from(i) / 4000.0))).collect();
+    x.extend([0.0, -1.0, -1e30, 1e-45, 1.0 / 64.0, 40.0, 39.999, 1e4, 1e30, 3e38].map(f));
+    let n = x.len();
+    let mut inputs = Inputs::default();
+    inputs.add("x", x.clone());
+    for (run, precision) in cpu_both(&program, n, &inputs, &["alpha"]).iter().zip(["f64", "f32"]) {
+        let eps = EPS[usize::from(precision == "f32")];
+        let mut worst = 0.0f64;
+        for (k, &xk) in x.iter().enumerate() {
+            let got = run[0][k];
+            assert!((0.0..=1.0).contains(&got), "volume_opacity {precision}({xk}) = {got}");
+            let expected = -(-xk.max(0.0)).exp_m1();
+            if xk <= 0.0 {
+                assert_eq!(got, 0.0, "volume_opacity {precision}({xk})");
+                continue;
+            }
+            if xk >= 40.0 {
+                assert_eq!(got, 1.0, "volume_opacity {precision}({xk})");
+                continue;
+            }
+            let rel = (got - expected).abs() / expected;
+            worst = worst.max(rel / eps);
+            assert!(
+                rel <= OPACITY_REL * eps,
+                "volume_opacity {precision}({xk}) = {got}, expected {expected}"
+            );
+        }
+        println!("volume_opacity {precision}: worst relative error {worst} eps over depths 1e-30..56");
+    }
+}
+
+/// The step opacity's relative error, in units of epsilon.
+const OPACITY_REL: f64 = 4.0;
+
+/// The compositing shader: n steps of (d, c, h) from the state (C0, A0), and one step of n h.
+fn composite_program() -> support::Program {
+    shader(
+        &[("float", "n"), ("float", "d"), ("float", "h"), ("float", "A0"), ("color", "c"), ("color", "C0")],
+        &[("color", "C"), ("float", "A"), ("color", "C1"), ("float", "A1")],
+        "float4 acc = {C0, A0};\n\
+         float i = 0;\n\
+         while (i < n) { acc = volume_composite(acc, d, c, h); i += 1; }\n\
+         C = rgb(acc); A = acc[3];\n\
+         float4 one = volume_composite({C0, A0}, d, c, n * h);\n\
+         C1 = rgb(one); A1 = one[3];",
+    )
+}
+
+#[test]
+fn n_equal_steps_composite_to_one_step_of_n_times_the_depth() {
+    let program = composite_program();
+    let mut rng = Rng(5);
+    let (mut n, mut d, mut h, mut a0, mut c, mut c0) = (vec![], vec![], vec![], vec![], vec![], vec![]);
+    for k in 0..300 {
+        n.push([1.0, 2.0, 7.0, 64.0, 300.0, 1000.0][k % 6]);
+        d.push(f(10f64.powf(rng.range(-3.0, 2.0))));
+        h.push(f(10f64.powf(rng.range(-4.0, -1.0))));
+        a0.push(if k % 3 == 0 { 0.0 } else { f(rng.unit()) });
+        c.push(rng.point(0.0, 2.0).map(f));
+        c0.push(rng.point(0.0, 1.0).map(f));
+    }
+    let count = n.len();
+    let mut inputs = Inputs::default();
+    inputs
+        .add("n", n.clone())
+        .add("d", d.clone())
+        .add("h", h.clone())
+        .add("A0", a0.clone())
+        .add("c", flat3(&c))
+        .add("C0", flat3(&c0));
+    for (run, precision) in
+        cpu_both(&program, count, &inputs, &["C", "A", "C1", "A1"]).iter().zip(["f64", "f32"])
+    {
+        let eps = EPS[usize::from(precision == "f32")];
+        let (mut worst_steps, mut worst_closed) = (0.0f64, 0.0f64);
+        for k in 0..count {
+            let (an, a1) = (run[1][k], run[3][k]);
+            assert!(an <= 1.0 && a1 <= 1.0 && an >= a0[k] && a1 >= a0[k], "{precision}: {an} {a1}");
+            // The closed form: transmittance multiplies by exp(-n d h); colour grows by c times the
+            // opacity added.
+            let depth = n[k] * d[k] * h[k];
+            let added = (1.0 - a0[k]) * -(-depth).exp_m1();
+            // Rounding: a few eps per step in the opacity recurrence, for the opacity and each colour.
+            let bound = (n[k] + 8.0) * 4.0 * eps;
+            let steps = (an - a1).abs();
+            let closed = (a1 - (a0[k] + added)).abs();
+            worst_steps = worst_steps.max(steps / ((n[k] + 8.0) * eps));
+            worst_closed = worst_closed.max(closed / eps);
+            assert!(steps <= bound, "{precision} n={} d={} h={}: {an} vs {a1}", n[k], d[k], h[k]);
+            assert!(closed <= 16.0 * eps, "{precision}: one step {a1} vs closed form {}", a0[k] + added);
+            for j in 0..3 {
+                let (cn, c1) = (run[0][3 * k + j], run[2][3 * k + j]);
+                let expected = c0[k][j] + c[k][j] * added;
+                assert!((cn - c1).abs() <= 2.0 * bound * (1.0 + c[k][j]), "{precision} colour {cn} vs {c1}");
+                assert!(
+                    (c1 - expected).abs() <= 32.0 * eps * (1.0 + c[k][j]),
+                    "{precision} colour {c1} vs {expected}"
+                );
+            }
+        }
+        println!(
+            "compositing {precision}: N steps vs one step worst {worst_steps} eps per step; one step vs closed form {worst_closed} eps"
+        );
+    }
+}
+
+#[test]
+fn opacity_saturates_at_one_for_any_optical_depth() {
+    let program = composite_program();
+    // Depth 1e4 per step (and up to 1e30 * 1e30), from every starting opacity; steps of depth 0.
+    let mut rng = Rng(9);
+    let (mut n, mut d, mut h, mut a0, mut c, mut c0) = (vec![], vec![], vec![], vec![], vec![], vec![]);
+    for k in 0..400 {
+        n.push([1.0, 3.0, 50.0][k % 3]);
+        let (dk, hk) =
+            [(1e4, 1.0), (1.0, 1e4), (1e30, 1e30), (1e4, 1e-3), (0.0, 1e30), (1e30, 0.0), (-1e30, 1.0)]
+                [k % 7];
+        d.push(f(dk));
+        h.push(f(hk));
+        a0.push(f([0.0, 1.0, rng.unit(), 1.0 - 1e-7, 1e-30][k % 5]));
+        c.push([rng.range(0.0, 1e4), 1.0, 0.0].map(f));
+        c0.push([0.0, 0.5, 1.0].map(f));
+    }
+    let count = n.len();
+    let mut inputs = Inputs::default();
+    inputs
+        .add("n", n.clone())
+        .add("d", d.clone())
+        .add("h", h.clone())
+        .add("A0", a0.clone())
+        .add("c", flat3(&c))
+        .add("C0", flat3(&c0));
+    for (run, precision) in
+        cpu_both(&program, count, &inputs, &["C", "A", "C1", "A1"]).iter().zip(["f64", "f32"])
+    {
+        for k in 0..count {
+            for col in run {
+                support::assert_finite(precision, col, 1);
+            }
+            let opaque = d[k] > 0.0 && h[k] > 0.0 && d[k] * h[k] >= 40.0;
+            for a in [run[1][k], run[3][k]] {
+                assert!(
+                    a <= 1.0 && a >= a0[k],
+                    "{precision}: opacity {a} from {} (d {}, h {})",
+                    a0[k],
+                    d[k],
+                    h[k]
+                );
+                if opaque {
+                    assert_eq!(a, 1.0, "{precision}: an opaque step leaves opacity {a} (from {})", a0[k]);
+                } else if d[k] <= 0.0 || h[k] <= 0.0 {
+                    assert_eq!(a, a0[k], "{precision}: an empty step changed the opacity");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn gradient_normals_are_unit_outward_and_guarded() {
+    let program = shader(
+        &[("vector", "g"), ("vector", "fb")],
+        &[("vector", "central"), ("vector", "onesided"), ("vector", "direct")],
+        "central = volume_density_normal(g[0], -g[0], g[1], -g[1], g[2], -g[2], fb);\n\
+         onesided = volume_density_normal(0, -g[0], -g[1], -g[2], fb);\n\
+         direct = volume_gradient_normal(g, fb);",
+    );
+    let mut rng = Rng(13);
+    let (mut g, mut fb) = (vec![], vec![]);
+    for k in 0..1500 {
+        let scale = match k % 5 {
+            0 => 0.0,
+            1 => 1e-45,
+            _ => 10f64.powf(rng.range(-44.0, 30.0)),
+        };
+        let dir = direction(&mut rng);
+        let mut v = dir.map(|x| f(x * scale));
+        if k % 7 == 3 {
+            v[(k / 7) % 3] = 0.0;
+        }
+        g.push(v);
+        fb.push(if k % 2 == 0 { [0.0; 3] } else { rng.point(-1e-30, 1e-30).map(f) });
+    }
+    let n = g.len();
+    let mut inputs = Inputs::default();
+    inputs.add("g", flat3(&g)).add("fb", flat3(&fb));
+    let names = ["central", "onesided", "direct"];
+    for (run, precision) in cpu_both(&program, n, &inputs, &names).iter().zip(["f64", "f32"]) {
+        let eps = EPS[usize::from(precision == "f32")];
+        let mut fallbacks = 0;
+        for k in 0..n {
+            // The expected normal: -g / |g|, else the fallback normalized, else +z.
+            let unit = |v: [f64; 3]| {
+                let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                if m == 0.0 {
+                    return None;
+                }
+                let u = v.map(|x| x / m);
+                let l = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                Some(u.map(|x| x / l))
+            };
+            let expected = match unit(g[k].map(|x| -x)) {
+                Some(u) => u,
+                None => {
+                    fallbacks += 1;
+                    unit(fb[k]).unwrap_or([0.0, 0.0, 1.0])
+                }
+            };
+            for (j, name) in names.iter().enumerate() {
+                let got = [0, 1, 2].map(|i| run[j][3 * k + i]);
+                for i in 0..3 {
+                    assert!(
+                        (got[i] - expected[i]).abs() <= 4.0 * eps,
+                        "{name} {precision} of g {:?} fallback {:?}: {got:?}, expected {expected:?}",
+                        g[k],
+                        fb[k]
+                    );
+                }
+            }
+        }
+        println!("normals {precision}: {n} gradients from 0 and 1e-45 to 1e30, {fallbacks} fallbacks");
+    }
+}
+
+#[test]
+fn the_soft_spheres_normal_is_radial() {
+    // Central differences of a quadratic are exact, and the soft profile is quadratic in p.
+    let program = shader(
+        &[("point", "p"), ("point", "c"), ("float", "r"), ("float", "s"), ("float", "h")],
+        &[("vector", "nn")],
+        "nn = volume_density_normal(\n\
+           soft_sphere(p + vector(h, 0, 0), c, r, s), soft_sphere(p - vector(h, 0, 0), c, r, s),\n\
+           soft_sphere(p + vector(0, h, 0), c, r, s), soft_sphere(p - vector(0, h, 0), c, r, s),\n\
+           soft_sphere(p + vector(0, 0, h), c, r, s), soft_sphere(p - vector(0, 0, h), c, r, s),\n\
+           vector(0, 0, 1));",
+    );
+    let mut rng = Rng(17);
+    let (mut p, mut c, mut r, mut s, mut h) = (vec![], vec![], vec![], vec![], vec![]);
+    for _ in 0..1000 {
+        let centre = rng.point(-1.0, 1.0).map(f);
+        let radius = rng.range(0.5, 1.5);
+        let soft = rng.range(0.1, 0.8);
+        let step = f(soft / 32.0);
+        // Well inside the soft region: the stencil stays in it.
+        let at = radius + soft * rng.range(-0.35, 0.35);
+        let d = direction(&mut rng);
+        p.push([0, 1, 2].map(|k| f(centre[k] + d[k] * at)));
+        c.push(centre);
+        r.push(f(radius));
+        s.push(f(soft));
+        h.push(step);
+    }
+    let n = p.len();
+    let mut inputs = Inputs::default();
+    inputs
+        .add("p", flat3(&p))
+        .add("c", flat3(&c))
+        .add("r", r.clone())
+        .add("s", s.clone())
+        .add("h", h.clone());
+    for (run, precision) in cpu_both(&program, n, &inputs, &["nn"]).iter().zip(["f64", "f32"]) {
+        let eps = EPS[usize::from(precision == "f32")];
+        let mut worst = 0.0f64;
+        for k in 0..n {
+            let x = [0, 1, 2].map(|i| p[k][i] - c[k][i]);
+            let l = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+            let err = (0..3).map(|i| (run[0][3 * k + i] - x[i] / l).abs()).fold(0.0, f64::max);
+            worst = worst.max(err / eps);
+            // Rounding of each density (eps) over differences of 2h |grad| (about 2h / s).
+            assert!(err <= 64.0 * eps * s[k] / h[k], "{precision} normal at {:?}: error {err}", p[k]);
+        }
+        println!("soft sphere normal {precision}: worst component error {worst} eps (h = s/32)");
+    }
+}
+
+#[test]
+fn henyey_greenstein_matches_the_formula_and_integrates_to_one() {
+    let program = shader(
+        &[("float", "cs"), ("float", "g"), ("float", "g2"), ("float", "w")],
+        &[("float", "hg"), ("float", "hg2")],
+        "hg = henyey_greenstein(cs, g); hg2 = henyey_greenstein2(cs, g, g2, w);",
+    );
+    // Pointwise, at f32 arguments (where the f64 formula's base 1 + g^2 - 2 g c is exact).
+    let mut rng = Rng(19);
+    let (mut cs, mut g) = (vec![], vec![]);
+    for k in 0..3000 {
+        let gk = match k % 4 {
+            0 => rng.range(-0.999, 0.999),
+            1 => 1.0 - 10f64.powf(rng.range(-7.0, -1.0)),
+            2 => -1.0 + 10f64.powf(rng.range(-7.0, -1.0)),
+            _ => rng.range(-0.5, 0.5),
+        };
+        let ck = match k % 3 {
+            0 => rng.range(-1.0, 1.0),
+            1 => 1.0 - 10f64.powf(rng.range(-7.0, 0.0)),
+            _ => -1.0 + 10f64.powf(rng.range(-7.0, 0.0)),
+        };
+        g.push(f(gk));
+        cs.push(f(ck));
+    }
+    let n = g.len();
+    let mut inputs = Inputs::default();
+    inputs.add("cs", cs.clone()).add("g", g.clone()).add("g2", vec![0.0; n]).add("w", vec![1.0; n]);
+    for (run, precision) in cpu_both(&program, n, &inputs, &["hg", "hg2"]).iter().zip(["f64", "f32"]) {
+        let eps = EPS[usize::from(precision == "f32")];
+        let mut worst = 0.0f64;
+        for k in 0..n {
+            let expected = reference::hg(cs[k], g[k]);
+            let rel = (run[0][k] - expected).abs() / expected;
+            worst = worst.max(rel / eps);
+            assert!(
+                rel <= 8.0 * eps,
+                "HG {precision}({}, {}) = {}, expected {expected}",
+                cs[k],
+                g[k],
+                run[0][k]
+            );
+            assert_eq!(run[0][k], run[1][k], "the two-lobe sum with w = 1 is the lobe");
+        }
+        println!("Henyey-Greenstein {precision}: worst relative error {worst} eps (g up to 1 - 1e-7)");
+    }
+
+    // The integral over the sphere, 2 pi int_{-1}^{1} p(c) dc, in f64: Simpson's rule in
+    // s = ln(1 -+ c) on each half, so the peaks of width (1 - |g|)^2 are resolved, plus the tails.
+    let gs = [-1.0, -0.999999, -0.9, -0.5, 0.0, 0.3, 0.7, 0.9, 0.99, 0.999999, 1.0];
+    let intervals = 4000;
+    let (lo, hi) = (1e-20f64.ln(), 0.0f64);
+    let (mut cs, mut g, mut g2, mut w) = (vec![], vec![], vec![], vec![]);
+    for &gk in &gs {
+        for half in [1.0, -1.0] {
+            for i in 0..=intervals {
+                let x = (lo + (hi - lo) * f64::from(i) / f64::from(intervals)).exp();
+                cs.push(half * (1.0 - x));
+                g.push(gk);
+                g2.push(-0.5 * gk);
+                w.push(0.7);
+            }
+            // The tail point: c = +-1.
+            cs.push(half);
+            g.push(gk);
+            g2.push(-0.5 * gk);
+            w.push(0.7);
+        }
+    }
+    let n = cs.len();
+    let mut inputs = Inputs::default();
+    inputs.add("cs", cs).add("g", g).add("g2", g2).add("w", w);
+    let out = program.cpu::<f64>(n, &inputs.columns(), &["hg", "hg2"]);
+    let per_half = intervals as usize + 2;
+    for (j, &gk) in gs.iter().enumerate() {
+        for (lobe, column) in out.iter().enumerate() {
+            let mut total = 0.0;
+            for half in 0..2 {
+                let base = (2 * j + half) * per_half;
+                let step = (hi - lo) / f64::from(intervals);
+                let mut sum = 0.0;
+                for i in 0..=intervals as usize {
+                    let x = (lo + step * i as f64).exp();
+                    let weight = if i == 0 || i == intervals as usize {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    sum += weight * column[base + i] * x;
+                }
+                total += sum * step / 3.0 + column[base + intervals as usize + 1] * lo.exp();
+            }
+            let integral = 2.0 * std::f64::consts::PI * total;
+            println!("HG lobe {lobe} g = {gk}: integral over the sphere {integral}");
+            // The nodes c = +-(1 - x) round to f64, which misplaces them by up to 1.1e-16 near
+            // c = +-1. That is negligible against the peak's width (1 - |g|)^2 except for
+            // |g| = 0.999999 (width 1e-12: an error of about 1e-6) and |g| = 1 (clamped to
+            // 1 - 2^-24: width 3.6e-15, 32 ulps; about 2e-4).
+            let tol = if gk.abs() == 1.0 {
+                1e-3
+            } else if gk.abs() > 0.99 {
+                1e-5
+            } else {
+                1e-7
+            };
+            assert!((integral - 1.0).abs() <= tol, "g = {gk}: the phase function integrates to {integral}");
+        }
+    }
+}
+
+#[test]
+fn wyvills_cubic_is_the_printed_polynomial_cut_at_r() {
+    let program = shader(
+        &[("float", "r"), ("float", "R"), ("point", "p"), ("point", "c")],
+        &[("float", "w"), ("float", "wb")],
+        "w = wyvill_cubic(r, R); wb = wyvill_blend(p, c, R);",
+    );
+    let mut rng = Rng(23);
+    let (mut r, mut big_r, mut p, mut c) = (vec![], vec![], vec![], vec![]);
+    for k in 0..3000 {
+        let rk = f(rng.range(0.01, 10.0));
+        let x = match k % 3 {
+            0 => rng.range(-1.6, 1.6),
+            1 => 1.0 - 10f64.powf(rng.range(-7.0, -1.0)),
+            _ => rng.range(0.0, 0.01),
+        } * rk;
+        r.push(f(x));
+        big_r.push(rk);
+        let centre = rng.point(-3.0, 3.0).map(f);
+        let d = direction(&mut rng);
+        p.push([0, 1, 2].map(|i| f(centre[i] + d[i] * x)));
+        c.push(centre);
+    }
+    // Exact points: 0, R/2, R, beyond, R <= 0.
+    for (x, rk) in
+        [(0.0, 1.0), (0.5, 1.0), (1.0, 1.0), (1.2, 1.0), (1.4, 1.0), (3.0, 2.0), (0.0, 0.0), (1.0, -1.0)]
+    {
+        r.push(x);
+        big_r.push(rk);
+        p.push([x, 0.0, 0.0]);
+        c.push([0.0; 3]);
+    }
+    let n = r.len();
+    let mut inputs = Inputs::default();
+    inputs.add("r", r.clone()).add("R", big_r.clone()).add("p", flat3(&p)).add("c", flat3(&c));
+    for (run, precision) in cpu_both(&program, n, &inputs, &["w", "wb"]).iter().zip(["f64", "f32"]) {
+        let eps = EPS[usize::from(precision == "f32")];
+        let mut worst = 0.0f64;
+        for k in 0..n {
+            let expected = reference::wyvill(r[k], big_r[k]);
+            let got = run[0][k];
+            assert!((0.0..=1.0).contains(&got), "wyvill {precision}({}, {}) = {got}", r[k], big_r[k]);
+            // Absolute: the printed polynomial cancels near R (its own error is a few eps there).
+            let err = (got - expected).abs();
+            worst = worst.max(err / eps);
+            assert!(
+                err <= 8.0 * eps,
+                "wyvill {precision}({}, {}) = {got}, expected {expected}",
+                r[k],
+                big_r[k]
+            );
+            let q = (0..3).map(|i| (p[k][i] - c[k][i]).powi(2)).sum::<f64>().sqrt();
+            let expected = reference::wyvill(q, big_r[k]);
+            assert!(
+                (run[1][k] - expected).abs() <= 16.0 * eps,
+                "wyvill_blend {precision}: {} vs {expected}",
+                run[1][k]
+            );
+        }
+        let tail = &run[0][n - 8..];
+        assert_eq!(
+            tail,
+            [1.0, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            "{precision}: F(0), F(R/2), F(R), beyond R, R <= 0"
+        );
+        println!("wyvill {precision}: worst absolute error {worst} eps");
+    }
+    // C1 at R: the slope (F(R) - F(R - e)) / e vanishes like e (F = (1 - a)^2 (9 - 4a) / 9).
+    let e: Vec<f64> = (1..=6).map(|k| 10f64.powi(-k)).collect();
+    let mut inputs = Inputs::default();
+    inputs
+        .add("r", e.iter().map(|e| 1.0 - e).collect())
+        .add("R", vec![1.0; e.len()])
+        .add("p", vec![0.0; 3 * e.len()])
+        .add("c", vec![0.0; 3 * e.len()]);
+    let out = program.cpu::<f64>(e.len(), &inputs.columns(), &["w"]);
+    for (k, e) in e.iter().enumerate() {
+        let slope = out[0][k] / e;
+        assert!(slope <= 3.0 * e, "slope {slope} at R - {e}");
+    }
+}

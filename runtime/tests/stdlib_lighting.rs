@@ -885,3 +885,26 @@ fn standard_surfaces_follow_appendix_a() {
         }
     }
 }
+
+/// A scene using the standard shaders through a wrapper file (`#include <shaders.sl>`), rendered
+/// by the CPU reference and the GPU, within OSL's default image thresholds.
+#[test]
+fn swatch_scenes_with_the_standard_shaders_render_alike() {
+    use patina_runtime::image::{Thresholds, compare};
+    use patina_runtime::render::{self, Backend};
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    for name in ["lighting_plastic", "lighting_spotlight", "lighting_kajiya_kay", "lighting_banks"] {
+        let path = format!("{}/../docs/stdlib/swatches/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+        let mut scene = patina_runtime::scene::Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        scene.output.width = 48;
+        scene.output.height = 48;
+        let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let g = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let t = Thresholds::default();
+        let c = compare(&cpu, &g, &t).unwrap();
+        assert!(c.passes(&t), "{name}: GPU and CPU images differ: {c:?}");
+        let lit = cpu.pixels.iter().filter(|p| p[0] > 0.2).count();
+        assert!(lit > 48 * 48 / 20, "{name}: only {lit} lit pixels");
+    }
+}

@@ -47,11 +47,12 @@ float _patina_ctable_entry(float n, x, wrap)
 // eq. 13, L252), for the arrays `color table[n]` and `color sat[n]`. It is a macro, not a function
 // with an `output` array parameter, because of a second compiler bug: a function with an `output`
 // parameter that no shader calls fails to check (E0507 on the parameter), and every size but the
-// one a shader uses is uncalled.
+// one a shader uses is uncalled. Its loop counter is a plain (varying) float, not `constant`, so
+// that it may be used under a varying condition (a constant declaration there is E0605).
 #define PATINA_COLORTABLE_SAT(table, sat, n) \
     { \
         color _patina_acc = 0; \
-        constant float _patina_j; \
+        float _patina_j; \
         for (_patina_j = 0; _patina_j < (n); _patina_j += 1) { \
             _patina_acc += (table)[_patina_j]; \
             (sat)[_patina_j] = _patina_acc; \

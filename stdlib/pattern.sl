@@ -229,12 +229,9 @@ float _patina_sin2pi(float t)
 // term to term by exact doubling, so an integer minfreq keeps full precision at any |x| (the phase
 // of the integer part is then exactly 0). Guards: minfreq <= 0 gives 0 (no terms); minfreq is
 // taken as at least 1e-30; a frequency that overflows is >= maxfreq and adds nothing. The loop
-// always runs its 30 iterations (a `break` on a varying condition would make the constant loop
-// counter varying), skipping the terms from maxfreq on. |result| < 2 / minfreq.
+// always runs its 30 iterations, skipping the terms from maxfreq on. |result| < 2 / minfreq.
 float sinesum(float x, w, minfreq, maxfreq)
 {
-    // (No early return for minfreq <= 0: code after a varying return is under a varying
-    // condition, which the constant loop counter cannot be.)
     float on = minfreq > 0 ? 1 : 0;
     float f = max(minfreq, 1e-30);
     float xi = floor(x);
@@ -244,7 +241,9 @@ float sinesum(float x, w, minfreq, maxfreq)
     float phase = abs(t) < 1e30 ? t - floor(t) : 0;
     float ww = max(w, 0);
     float value = 0;
-    constant float i;
+    // A plain float counter, not `constant`: sinesum may then be called under a varying
+    // condition (a constant declaration there is E0605).
+    float i;
     for (i = 0; i < PATINA_PATTERN_MAX_TERMS; i += 1) {
         if (on != 0 && f < maxfreq) {
             float fade = clamp(2 - 4 * f * ww, 0, 1);

@@ -54,11 +54,11 @@ pub fn check_source(name: &str, text: &str, loader: &dyn SourceLoader) -> Checke
     let before = diagnostics.clone();
     let mut library = stdlib::mentions_library_builtins(&sources)
         .then(|| stdlib::parse_library_builtins(&mut sources, loader, &mut diagnostics));
-    let mut checked = sema::check(&module, library.as_ref(), &mut diagnostics);
+    let mut checked = sema::check(&module, library.as_ref(), stdlib::files(&sources), &mut diagnostics);
     if checked.wants_library && library.is_none() {
         diagnostics = before;
         library = Some(stdlib::parse_library_builtins(&mut sources, loader, &mut diagnostics));
-        checked = sema::check(&module, library.as_ref(), &mut diagnostics);
+        checked = sema::check(&module, library.as_ref(), stdlib::files(&sources), &mut diagnostics);
     }
     Checked { sources, root, module, program: checked.program, diagnostics }
 }

@@ -60,3 +60,8 @@ pub fn parse_library_builtins(
     let file = sources.add_file(format!("{PREFIX}/builtins.sl"), LIBRARY, None);
     crate::syntax::parse_file(sources, file, loader, diags)
 }
+
+/// The files of `sources` that belong to the standard library.
+pub fn files(sources: &crate::source::SourceMap) -> rustc_hash::FxHashSet<crate::source::FileId> {
+    sources.files().filter(|(_, f)| f.name.starts_with(PREFIX)).map(|(id, _)| id).collect()
+}

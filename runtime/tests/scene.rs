@@ -370,3 +370,18 @@ fn the_documented_example_is_a_valid_scene() {
             .abs_diff_eq(Vec3::new(2.0 * FRAC_PI_6.cos(), 0.0, 1.0 - 2.0 * FRAC_PI_6.sin()), 1e-3)
     );
 }
+
+#[test]
+fn a_shader_can_be_a_standard_library_module() {
+    let text =
+        format!("{CAMERA}[[object]]\nmesh = \"sphere\"\nshader = \"<shaders.sl>\"\nname = \"plastic\"\n");
+    let scene = Scene::parse(&text, "scenes/lib.toml", "scenes").unwrap();
+    assert_eq!(scene.objects[0].surface.path, Path::new("<stdlib>/shaders.sl"));
+    let text = format!("{CAMERA}[[object]]\nmesh = \"sphere\"\nshader = \"<shader.sl>\"\n");
+    let message = Scene::parse(&text, "scenes/bad.toml", "scenes").unwrap_err().to_string();
+    assert!(
+        message.starts_with("scenes/bad.toml:6:10: object[0].shader: no standard-library module `shader.sl`"),
+        "{message}"
+    );
+    assert!(message.contains("shaders.sl") && !message.contains('\n'), "{message}");
+}

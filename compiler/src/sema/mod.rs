@@ -61,10 +61,17 @@ pub struct Checked {
 /// Checks a parsed module and lowers each of its shaders to the typed IR. Shaders with errors are
 /// left out of the program; their diagnostics are in `diags`. `library` is the parsed
 /// `stdlib/builtins.sl`, whose functions implement the library built-ins.
-pub fn check(module: &ast::Module, library: Option<&ast::Module>, diags: &mut Diagnostics) -> Checked {
+/// `stdlib_files` are the files of the standard library among those the module was read from.
+pub fn check(
+    module: &ast::Module,
+    library: Option<&ast::Module>,
+    stdlib_files: rustc_hash::FxHashSet<crate::source::FileId>,
+    diags: &mut Diagnostics,
+) -> Checked {
     let table = Functions {
         user: functions(module, diags),
         library: library.map(|l| functions(l, diags)).unwrap_or_default(),
+        stdlib_files,
     };
     let globals: Vec<&ast::VarDecl> = module
         .items

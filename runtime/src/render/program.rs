@@ -34,7 +34,12 @@ pub fn load(
 ) -> Result<LoadedShader, RenderError> {
     let path = shader.path.as_path();
     let shown = path.display().to_string();
-    let text = match read_source_file(path) {
+    let module = shown.strip_prefix(patina_compiler::stdlib::PREFIX).and_then(|m| m.strip_prefix('/'));
+    let text = match module.and_then(patina_compiler::stdlib::source) {
+        Some(text) => Ok(Some(text.to_string())),
+        None => read_source_file(path),
+    };
+    let text = match text {
         Ok(Some(text)) => text,
         Ok(None) => return Err(RenderError::Input(format!("cannot read {shown}: no such file"))),
         Err(reason) => return Err(RenderError::Input(format!("cannot read {shown}: {reason}"))),

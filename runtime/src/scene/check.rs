@@ -8,7 +8,7 @@ use super::{DEFAULT_DETAIL, Light, MeshSource, Object, Output, Quality, Scene, S
 use crate::camera::Camera;
 use crate::mesh::MAX_DETAIL;
 use glam::Vec3;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> Result<Scene, SceneError> {
     let output = output(&raw.output, loc)?;
@@ -128,6 +128,18 @@ fn shader_parts(
     }
     if name.as_deref().is_some_and(|n| n.trim().is_empty()) {
         return Err(loc.invalid(&at.key("name"), "the shader name is empty (leave `name` out instead)"));
+    }
+    // `<shaders.sl>`: a module of the standard library, as `#include <shaders.sl>` names it.
+    if let Some(module) = path.strip_prefix('<').and_then(|p| p.strip_suffix('>')) {
+        if patina_compiler::stdlib::source(module).is_none() {
+            let known: Vec<&str> = patina_compiler::stdlib::MODULES.iter().map(|(n, _)| *n).collect();
+            return Err(loc.invalid(
+                &at.key("shader"),
+                format!("no standard-library module `{module}` (there are {})", known.join(", ")),
+            ));
+        }
+        let path = PathBuf::from(format!("{}/{module}", patina_compiler::stdlib::PREFIX));
+        return Ok(ShaderRef { path, name: name.clone(), params: params.clone() });
     }
     Ok(ShaderRef { path: base.join(path), name: name.clone(), params: params.clone() })
 }

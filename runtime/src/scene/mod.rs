@@ -18,7 +18,8 @@
 //! far = 100
 //!
 //! [[light]]                    # any number of lights
-//! shader = "../shaders/lights.sl"        # relative to this file's directory
+//! shader = "../shaders/lights.sl"        # relative to this file's directory, or a standard-
+//!                                        # library module in brackets: "<shaders.sl>"
 //! name = "pointlight"                    # which shader of the file (optional if it has one light)
 //! params = { intensity = 20.0, from = [2, 3, -4], lightcolor = [1.0, 0.9, 0.8] }
 //!

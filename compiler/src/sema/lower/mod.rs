@@ -29,6 +29,9 @@ pub struct Functions<'a> {
     pub user: FunctionTable<'a>,
     /// The library built-ins' implementations and the library functions they call.
     pub library: FunctionTable<'a>,
+    /// The files of the standard library (`<stdlib>/...`): their functions' variables are
+    /// inferred in both styles.
+    pub stdlib_files: FxHashSet<crate::source::FileId>,
 }
 
 /// What the statements being lowered are inside of.
@@ -57,6 +60,9 @@ struct Frame {
     /// A library built-in's implementation (or a function it calls): its calls resolve in the
     /// library, never among the user's functions.
     library: bool,
+    /// A standard-library function (or a library built-in's): its variables without a rate are
+    /// inferred in both styles, so that it is as uniform as its arguments, like a built-in.
+    inferred: bool,
 }
 
 /// What lowering keeps across the shaders and functions of one module.
@@ -409,9 +415,10 @@ impl Lowerer<'_> {
             Some(ast::RateQualifier::Varying) => {
                 Some(if is_param && q.output.is_none() { Frequency::Vertex } else { Frequency::Fragment })
             }
-            // Library built-ins' variables are inferred in both styles, so that a built-in
-            // written in the language keeps a built-in's rate: that of its arguments.
-            None if self.stanford || self.in_library() => {
+            // Standard-library variables are inferred in both styles, so that a library
+            // function (a built-in written in the language too) keeps a built-in's rate: that
+            // of its arguments.
+            None if self.stanford || self.frames.last().is_some_and(|f| f.inferred) => {
                 if is_param {
                     Some(Frequency::PrimitiveGroup)
                 } else {

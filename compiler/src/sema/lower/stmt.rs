@@ -457,6 +457,7 @@ impl Lowerer<'_> {
             outer,
             call_span,
             library,
+            inferred: library || self.functions.stdlib_files.contains(&f.span.file),
         });
         let stmts = &f.body.stmts;
         for s in stmts {

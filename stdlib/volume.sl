@@ -376,7 +376,8 @@ float henyey_greenstein(float cos_theta, g)
         b = (1 - gg) * (1 - gg) + 2 * gg * (1 - c);
     else
         b = (1 + gg) * (1 + gg) - 2 * gg * (1 + c);
-    return PATINA_VOLUME_INV_4PI * ((1 - gg) * (1 + gg)) / (b * sqrt(b));
+    float ratio = ((1 - gg) * (1 + gg)) / (b * sqrt(b));
+    return ratio * PATINA_VOLUME_INV_4PI;
 }
 
 // A sum of two Henyey-Greenstein lobes, w HG(g1) + (1 - w) HG(g2) (Ebert's "sums of

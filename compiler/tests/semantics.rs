@@ -1221,3 +1221,14 @@ fn uniform_array_written_at_a_varying_index() {
     assert!(text.contains("assigned at a varying index"), "{text}");
     insta::assert_snapshot!("uniform_array_written_at_a_varying_index", text);
 }
+
+#[test]
+fn a_function_no_shader_calls_may_have_output_parameters() {
+    // Checked on its own, it gets a variable for each output (library modules are all such
+    // functions).
+    let (codes, _) =
+        run("void fill(output float a; output color c[]) { a = 1; c[0] = a; }\nsurface t() { Ci = 1; }\n");
+    assert!(codes.is_empty(), "{codes:?}");
+    let (codes, _) = run("void fill(output float a) { a = undefined_name; }\nsurface t() { Ci = 1; }\n");
+    assert_eq!(codes, ["E0501"]);
+}

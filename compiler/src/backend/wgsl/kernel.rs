@@ -147,6 +147,28 @@ pub fn compile_kernel(
     let point = t.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
     let point = t.pointer(point);
     t.store(point, index);
+    // What the interpreter gives a shader before its inputs: the constants among the predefined
+    // variables, and each parameter that is not an input its default (the interpreter evaluates
+    // defaults once per batch; here once per invocation, in declaration order).
+    for (name, value) in [("PI", std::f64::consts::PI), ("ncomps", 3.0)] {
+        let used =
+            shader.exprs.iter().any(|e| matches!(e.kind, crate::ir::ExprKind::Global(g) if g.name == name));
+        if used {
+            let var = t.global_var(name, Type::FLOAT, false);
+            let v = t.float(value);
+            let p = t.pointer(var);
+            t.store(p, v);
+        }
+    }
+    for &param in &shader.params {
+        let local = shader.local(param);
+        let is_input = ins.iter().any(|(_, target)| matches!(target, Target::Local(l) if *l == param));
+        if let (crate::ir::LocalKind::Param { default: Some(default), .. }, false) = (&local.kind, is_input) {
+            let value = t.expr(*default)?;
+            let ptr = target_pointer(&mut t, shader, &Target::Local(param), local.ty);
+            t.store(ptr, value);
+        }
+    }
     let in_stride = t.fb.add(Expression::Literal(Literal::U32(input_stride)));
     let in_base = t.binary(Op::Multiply, index, in_stride);
     for (v, target) in &ins {

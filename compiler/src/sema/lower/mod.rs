@@ -186,7 +186,15 @@ pub(super) fn check_function(
         .iter()
         .map(|p| {
             let ty = stmt::declared_type(p.ty, p.array.as_ref());
-            Some(l.push_expr(ExprKind::Literal(Literal::Float(0.0)), ty, p.span))
+            // An output parameter needs a variable to write to.
+            let value = if p.qualifiers.output.is_some() {
+                let (rate, declared) = (Rate::CONSTANT, false);
+                let local = l.new_local(p.name.name.clone(), ty, rate, declared, LocalKind::Temp, p.span);
+                ExprKind::Local(local)
+            } else {
+                ExprKind::Literal(Literal::Float(0.0))
+            };
+            Some(l.push_expr(value, ty, p.span))
         })
         .collect();
     l.standalone = true;

@@ -432,7 +432,16 @@ impl Lowerer<'_> {
         let saved_loops = std::mem::replace(&mut self.loops, 0);
         let mut outputs = Vec::new();
         for (p, arg) in f.params.iter().zip(args) {
-            let ty = declared_type(p.ty, p.array.as_ref());
+            let mut ty = declared_type(p.ty, p.array.as_ref());
+            // An open-length array parameter (`float t[]`) has its argument's length at this call.
+            if ty.array == Some(0)
+                && let Some(arg) = arg
+                && let arg_ty = self.ty(*arg)
+                && arg_ty.base == ty.base
+                && arg_ty.array.is_some()
+            {
+                ty.array = arg_ty.array;
+            }
             let (rate, declared) = self.declared_rate_function_param(&p.qualifiers);
             let id = self.new_local(p.name.name.clone(), ty, rate, declared, LocalKind::Var, p.name.span);
             // Created before the callee's frame is pushed, but the callee's own.

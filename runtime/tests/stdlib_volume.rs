@@ -1067,7 +1067,7 @@ fn sweep_inputs(count: usize, extreme: f64, seed: u64) -> Inputs {
     let mut rng = Rng(seed);
     let mut extremes = support::extremes();
     extremes.extend([30.0, 2.0, 0.999999, -0.999999, 1.0 - 1e-7, 40.0, 1e38, -1e38]);
-    let mut pick = |rng: &mut Rng, lo: f64, hi: f64| {
+    let pick = |rng: &mut Rng, lo: f64, hi: f64| {
         if rng.unit() < extreme {
             extremes[(rng.unit() * extremes.len() as f64) as usize]
         } else {
@@ -1076,7 +1076,7 @@ fn sweep_inputs(count: usize, extreme: f64, seed: u64) -> Inputs {
     };
     let mut cols: Vec<Vec<f64>> = vec![vec![]; 8];
     for _ in 0..count {
-        for k in 0..3 {
+        for _ in 0..3 {
             cols[0].push(pick(&mut rng, -2.0, 2.0));
             cols[1].push(pick(&mut rng, -1.0, 1.0));
             cols[2].push(pick(&mut rng, -1.0, 1.0));

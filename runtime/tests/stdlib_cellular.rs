@@ -147,7 +147,7 @@ fn cellnoise_inputs() -> Vec<[f64; 5]> {
                 _ => e[(rng.next() % e.len() as u64) as usize],
             }
         };
-        let p = [c(), c(), c(), c(), f64::from((i % 7) as i32 - 3)];
+        let p = [c(), c(), c(), c(), f64::from(i % 7 - 3)];
         v.push(p.map(|x| f64::from(x as f32)));
     }
     v

@@ -457,7 +457,8 @@ fn noise_statistics() {
     let mut rng = Rng(17);
     let all: Vec<[f64; 3]> = (0..2048).map(|_| rng.point(-500.0, 500.0)).collect();
     // (name, call, |mean| bound, variance range, documented range)
-    let cases: &[(&str, &str, f64, (f64, f64), (f64, f64))] = &[
+    type Case<'a> = (&'a str, &'a str, f64, (f64, f64), (f64, f64));
+    let cases: &[Case] = &[
         ("vnoise", "vnoise(p)", 0.03, (0.10, 0.30), (-1.953, 1.953)),
         ("vnoise_linear", "vnoise_linear(p)", 0.03, (0.03, 0.15), (-1.0, 1.0)),
         ("gnoise", "gnoise(p)", 0.03, (0.02, 0.12), (-1.0, 1.0)),
@@ -530,13 +531,7 @@ fn extreme_points() -> Vec<[f64; 3]> {
 /// [-pi, pi]); vcnoise and scnoise sum 64 and 375 filter terms, which lavapipe does not always
 /// round as the interpreter does (measured: a few ulp of 1).
 fn gpu_tolerance(name: &str) -> f64 {
-    if uses_trig(name) {
-        2e-6
-    } else if name == "vcnoise" || name == "scnoise" {
-        2e-6
-    } else {
-        0.0
-    }
+    if uses_trig(name) || name == "vcnoise" || name == "scnoise" { 2e-6 } else { 0.0 }
 }
 
 #[test]

@@ -1031,8 +1031,9 @@ enum Range {
 /// slope, unbounded as g -> 1, magnifies the pow error), fbm's spectral weights (pow: `fractal`;
 /// measured 0, lacunarity 2 and H 1 give exact powers of 2) and the alpha correction (log:
 /// `halpha`; measured 1.2e-7). `fractal`, `shaped` and `fur` are compared on the ordinary inputs
-/// only: at extreme parameters a pow rounding can move a value across a step (gain at g = 1 is a
-/// step at 1/2; a huge amplitude moves the point across an arbitrarily thin soft shell).
+/// only: at extreme parameters a pow rounding can move a value across a step (pattern.sl's gain at
+/// g <= 0 jumps at 0 and 1, so a denormal that the GPU's pow flushes to 0, or a bias of 1 - 1 ulp,
+/// changes it by 1/2; a huge amplitude moves the point across an arbitrarily thin soft shell).
 fn gpu_tol(name: &str) -> f64 {
     match name {
         "shaped" | "fur" => 2e-4,

@@ -120,11 +120,13 @@ float lattice_lerp(float t, a, b)
 // (Peachey's catrom2, L2505-2530): with x = sqrt(d2), 1 - 2.5 x^2 + 1.5 x^3 for x < 1,
 // 2 - 4 x + 2.5 x^2 - 0.5 x^3 for 1 <= x < 2, 0 beyond (each in the printed Horner form).
 // Erratum decision (catalogue H-P10): evaluated exactly, not read from a 401-entry table at the
-// nearest entry, so the noises built on it are C1 instead of piecewise constant in d2.
+// nearest entry, so the noises built on it are C1 instead of piecewise constant in d2. The inner
+// branch uses d2 for x^2 (more accurate, and the same on the GPU, which folds sqrt(d2) * sqrt(d2)
+// into d2 where the interpreter rounds the product).
 float lattice_catrom2(float d2)
 {
     float x = sqrt(max(d2, 0));
-    float inner = 0.5 * (2 + x * x * (-5 + x * 3));
+    float inner = 0.5 * (2 + d2 * (-5 + x * 3));
     float outer = 0.5 * (4 + x * (-8 + x * (5 - x)));
     return d2 >= 4 ? 0 : (x < 1 ? inner : outer);
 }

@@ -15,9 +15,11 @@
 // and radii up to 1e37 in magnitude; beyond that radii and distances are taken as 1e37), densities
 // and opacities are in [0, 1] exactly, and no normal is NaN. Lengths are computed scaled by the
 // largest component (volume_length), so squares never overflow or underflow; the soft profile is
-// written without squares. Everything apart from the noise-based density functions and
-// hypertexture_alpha is plain arithmetic and sqrt (no exp, log, pow), so the GPU agrees with the
-// interpreter bit for bit there (runtime/tests/stdlib_volume.rs).
+// written without squares. Everything apart from density_bias_gain and hypertexture_fur (pow and
+// log through pattern.sl's bias and gain), fractal_sphere (pow in fbm's weights) and
+// hypertexture_alpha (log) is plain arithmetic, sqrt, floor and the noise's integer hashing (no
+// exp, log, pow), so the GPU agrees with the interpreter bit for bit there; the measured
+// tolerances of the others are in docs/stdlib/volume.md (runtime/tests/stdlib_volume.rs).
 
 #ifndef PATINA_VOLUME_SL
 #define PATINA_VOLUME_SL

@@ -1232,3 +1232,19 @@ fn a_function_no_shader_calls_may_have_output_parameters() {
     let (codes, _) = run("void fill(output float a) { a = undefined_name; }\nsurface t() { Ci = 1; }\n");
     assert_eq!(codes, ["E0501"]);
 }
+
+#[test]
+fn a_function_called_inside_a_conditional_may_assign_its_own_variables() {
+    let (codes, _) = run(
+        "float f(float x) { float y = x; y = y + 1; return y; }\nsurface t() { Ci = s < 0.5 ? f(s) : 0; }\n",
+    );
+    assert!(codes.is_empty(), "{codes:?}");
+    // But not the caller's state: every operand is evaluated.
+    let (codes, _) =
+        run("float g(float x) { Ci = 1; return x; }\nsurface t() { Oi = s < 0.5 ? g(s) : 0; }\n");
+    assert_eq!(codes, ["E0520"]);
+    let (codes, _) = run(
+        "float h(output float o) { o = 2; return o; }\nsurface t() { float k = 0; if (s > 0 && h(k) > 1) Ci = k; }\n",
+    );
+    assert_eq!(codes, ["E0520"]);
+}

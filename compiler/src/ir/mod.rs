@@ -232,6 +232,17 @@ pub enum Place {
     Index(Box<Place>, ExprId),
 }
 
+impl Place {
+    /// The local this place is (a part of), if it is not a predefined variable.
+    pub fn root_local(&self) -> Option<LocalId> {
+        match self {
+            Place::Local(l) => Some(*l),
+            Place::Global(_) => None,
+            Place::Index(inner, _) => inner.root_local(),
+        }
+    }
+}
+
 /// A sequence of statements.
 pub type Block = Vec<Stmt>;
 

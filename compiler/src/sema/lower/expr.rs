@@ -509,6 +509,24 @@ impl Lowerer<'_> {
         }
         let t = self.expr(target, None, out)?;
         let place = self.place_of(t)?;
+        if let Some(first) = self.frames.iter().find_map(|f| f.guarded_from) {
+            let own = match place.root_local() {
+                Some(l) => l.0 as usize >= first,
+                None => false,
+            };
+            if !own {
+                self.error(
+                    Diagnostic::error(
+                        Code::EffectInCondition,
+                        "assignment to a variable outside this function, in a call inside `?:`, `&&` or `||`",
+                        span,
+                        "every side of the operator is evaluated, so this would always run",
+                    )
+                    .with_help("call the function in a statement before the expression"),
+                );
+                return None;
+            }
+        }
         let ty = self.ty(t);
         let v = self.expr(value, Some(ty), out)?;
         let v = match op {

@@ -63,6 +63,9 @@ struct Frame {
     /// A standard-library function (or a library built-in's): its variables without a rate are
     /// inferred in both styles, so that it is as uniform as its arguments, like a built-in.
     inferred: bool,
+    /// Called inside `?:`, `&&` or `||`: the first local of the call; the callee may assign only
+    /// locals from there on (its own).
+    guarded_from: Option<usize>,
 }
 
 /// What lowering keeps across the shaders and functions of one module.

@@ -430,6 +430,27 @@ impl Lowerer<'_> {
         self.scopes.push(FxHashMap::default());
         let mut body = Vec::new();
         let saved_loops = std::mem::replace(&mut self.loops, 0);
+        // Inside `?:`, `&&` or `||` every operand is evaluated: the callee may assign its own
+        // variables (only those, checked in `assign`), but may not write back to the caller.
+        let guarded = (self.no_effects > 0).then_some(self.locals.len());
+        let saved_no_effects = std::mem::replace(&mut self.no_effects, 0);
+        if guarded.is_some()
+            && let Some(p) = f.params.iter().find(|p| p.qualifiers.output.is_some())
+        {
+            self.error(
+                Diagnostic::error(
+                    Code::EffectInCondition,
+                    format!(
+                        "`{}` writes its output parameter `{}` inside `?:`, `&&` or `||`",
+                        f.name.name, p.name.name
+                    ),
+                    call_span,
+                    "every side of the operator is evaluated here",
+                )
+                .with_label(p.name.span, "an output parameter")
+                .with_help("call it in a statement before the expression"),
+            );
+        }
         let mut outputs = Vec::new();
         for (p, arg) in f.params.iter().zip(args) {
             let mut ty = declared_type(p.ty, p.array.as_ref());
@@ -467,6 +488,7 @@ impl Lowerer<'_> {
             call_span,
             library,
             inferred: library || self.functions.stdlib_files.contains(&f.span.file),
+            guarded_from: guarded,
         });
         let stmts = &f.body.stmts;
         for s in stmts {
@@ -474,6 +496,7 @@ impl Lowerer<'_> {
         }
         self.frames.pop();
         self.loops = saved_loops;
+        self.no_effects = saved_no_effects;
         self.scopes.truncate(scope_base);
         if ret.base != Base::Void && !always_returns(stmts) {
             self.error(

@@ -295,8 +295,8 @@ float volume_opacity(float depth)
 // clamped to >= 0, the opacity to [0, 1]. The opacity never exceeds 1 and reaches 1 exactly for an
 // opaque step (rounding: a + fl(1 - a) = 1 for every a in [0, 1]). N steps of depth x composite to
 // the one step of depth N x, up to rounding. (A state in a float4 rather than two `output`
-// parameters: a library function writing an `output` parameter is rejected when a shader does not
-// call it, E0507; see docs/stdlib/volume.md.)
+// parameters: written while uncalled library functions could not write `output` parameters,
+// E0507, since fixed; one state in and one out also composes in expressions.)
 float4 volume_composite(float4 acc; float density; color c; float step)
 {
     float a = clamp(acc[3], 0, 1);

@@ -20,9 +20,9 @@
 //
 // Guards shared by every function here, so that any finite input gives a finite result on both
 // backends: the octave count is clamped to [0, 30] (PATINA_FRACTAL_MAX_OCTAVES); H below 0 is
-// taken as 0 (weights never exceed 1); lacunarity is clamped to [1, 8] (8^30 * 1e6 stays below
-// the f32 maximum). Octave i samples the noise at p * lacunarity^i, so in f32 the finer octaves
-// lose their fraction sooner than the first (stdlib/noise.sl: past 2^23 every f32 is an integer
+// taken as 0 (weights never exceed 1); lacunarity is clamped to [1, 8]; the scaled points are
+// clamped to +-1e30 (PATINA_FRACTAL_MAX_COORD), so that p lacunarity^i stays finite for every
+// finite p. Octave i samples the noise at p * lacunarity^i, so in f32 the finer octaves lose their fraction sooner than the first (stdlib/noise.sl: past 2^23 every f32 is an integer
 // and the noise is 0; those octaves then add nothing, which is finite but not detail).
 //
 // Precision (measured by compiler/tests/stdlib_fractal.rs and runtime/tests/stdlib_fractal_gpu.rs):
@@ -40,6 +40,13 @@
 #ifndef PATINA_FRACTAL_MAX_OCTAVES
 #define PATINA_FRACTAL_MAX_OCTAVES 30
 #endif
+
+// The bound on the coordinates of the scaled points p lacunarity^i: each octave's point is
+// clamped to +-1e30, so that p lacunarity^i stays finite for any finite p (1e30 * 8 < the f32
+// maximum). Beyond 2^53 (f64) or 2^23 (f32) every coordinate is an integer, so the clamp moves
+// only coordinates whose fraction is already 0; it changes which lattice cell such a coordinate
+// hashes to, not the fraction of the others.
+#define PATINA_FRACTAL_MAX_COORD 1e30
 
 // Musgrave's fBm (T&M L10148-10170): sum over i < floor(octaves) of
 // snoise3(p * lacunarity^i) * lacunarity^(-H i), plus the fractional remainder
@@ -59,7 +66,7 @@ float fbm(point p; float H, lacunarity, octaves)
     for (i = 0; i < oct; i += 1) {
         // 1 for whole octaves, the remainder for the fractional last one, 0 beyond.
         value += clamp(oct - i, 0, 1) * snoise3(pp) * pow(lac, -h * i);
-        pp = pp * lac;
+        pp = clamp(pp * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
     }
     return value;
 }
@@ -74,7 +81,8 @@ float turbulence(point p; float octaves)
     float value = 0, f = 1;
     float i;
     for (i = 0; i < oct; i += 1) {
-        value += clamp(oct - i, 0, 1) * abs(snoise3(p * f)) / f;
+        point pf = clamp(p * f, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
+        value += clamp(oct - i, 0, 1) * abs(snoise3(pf)) / f;
         f *= 2;
     }
     return value;
@@ -99,7 +107,7 @@ float ridged_multifractal(point p; float H, lacunarity, octaves, offset, gain)
         signal = signal * signal * weight;
         result += clamp(n - i, 0, 1) * signal * pow(lac, -h * i);
         weight = clamp(signal * gain, 0, 1);
-        pp = pp * lac;
+        pp = clamp(pp * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
     }
     return result;
 }
@@ -127,7 +135,7 @@ float hybrid_multifractal(point p; float H, lacunarity, octaves, offset)
         signal = (snoise3(pp) + offset) * pow(lac, -h * i);
         result += clamp(oct - i, 0, 1) * weight * signal;
         weight *= signal;
-        pp = pp * lac;
+        pp = clamp(pp * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
     }
     return result;
 }
@@ -180,7 +188,7 @@ float multifractal(point p; float H, lacunarity, octaves, offset)
     for (i = 0; i < n; i += 1) {
         value = clamp(value * ((snoise3(pp) + o) * pow(lac, -h * i)),
                       -PATINA_FRACTAL_MAX_PRODUCT, PATINA_FRACTAL_MAX_PRODUCT);
-        pp = pp * lac;
+        pp = clamp(pp * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
     }
     return value;
 }
@@ -208,12 +216,12 @@ float hetero_terrain(point p; float H, lacunarity, octaves, offset)
     float oct = clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES);
     float o = clamp(offset, -PATINA_FRACTAL_MAX_OFFSET, PATINA_FRACTAL_MAX_OFFSET);
     float value = clamp(oct, 0, 1) * (o + snoise3(p));
-    point pp = p * lac;
+    point pp = clamp(p * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
     float i;
     for (i = 1; i < oct; i += 1) {
         float increment = (snoise3(pp) + o) * pow(lac, -h * i) * clamp(value, -1, 1);
         value += clamp(oct - i, 0, 1) * increment;
-        pp = pp * lac;
+        pp = clamp(pp * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
     }
     return value;
 }
@@ -253,7 +261,7 @@ float distfbm(point p; float H, lacunarity, octaves, distortion)
     float i;
     for (i = 0; i < oct; i += 1) {
         value += clamp(oct - i, 0, 1) * distnoise(pp, distortion) * pow(lac, -h * i);
-        pp = pp * lac;
+        pp = clamp(pp * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
     }
     return value;
 }

@@ -48,6 +48,17 @@
 // hashes to, not the fraction of the others.
 #define PATINA_FRACTAL_MAX_COORD 1e30
 
+// The largest |offset| the multifractals (ridged, hybrid, multifractal, hetero_terrain) use: a larger
+// one is taken as +-PATINA_FRACTAL_MAX_OFFSET. Musgrave: the multifractal "approaches a flat plane
+// as offset gets large (i.e., around 100 or so)" (T&M L10228), so nothing is lost at 1e4.
+#ifndef PATINA_FRACTAL_MAX_OFFSET
+#define PATINA_FRACTAL_MAX_OFFSET 1e4
+#endif
+
+// The bound on multifractal's running product (|value| is clamped to it after every octave) and
+// on the hybrid multifractal's negative weights.
+#define PATINA_FRACTAL_MAX_PRODUCT 1e30
+
 // Musgrave's fBm (T&M L10148-10170): sum over i < floor(octaves) of
 // snoise3(p * lacunarity^i) * lacunarity^(-H i), plus the fractional remainder
 // (octaves - floor(octaves)) times the next octave, so the result is continuous in `octaves`
@@ -93,17 +104,19 @@ float turbulence(point p; float octaves)
 // weight = clamp(signal_{i-1} * gain, 0, 1), signal_i = (offset - |snoise3(p lacunarity^i)|)^2
 // * weight, result += signal_i * lacunarity^(-H i). Whole octaves only, as printed (a fractional
 // part of octaves is dropped); octaves clamped to [0, 30] (0 gives 0), H >= 0, lacunarity in
-// [1, 8]. With offset 1, gain 2, H 1 the result stays in [0, 2] (catalogue: max about 1.95).
+// [1, 8], offset to +-PATINA_FRACTAL_MAX_OFFSET (so that signal^2 stays finite). With offset 1,
+// gain 2, H 1 the result stays in [0, 2] (catalogue: max about 1.95).
 float ridged_multifractal(point p; float H, lacunarity, octaves, offset, gain)
 {
     float h = max(H, 0);
     float lac = clamp(lacunarity, 1, 8);
     float n = floor(clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES));
+    float o = clamp(offset, -PATINA_FRACTAL_MAX_OFFSET, PATINA_FRACTAL_MAX_OFFSET);
     float result = 0, weight = 1, signal;
     point pp = p;
     float i;
     for (i = 0; i < n; i += 1) {
-        signal = offset - abs(snoise3(pp));
+        signal = o - abs(snoise3(pp));
         signal = signal * signal * weight;
         result += clamp(n - i, 0, 1) * signal * pow(lac, -h * i);
         weight = clamp(signal * gain, 0, 1);
@@ -120,19 +133,21 @@ float ridged_multifractal(point p; float H, lacunarity, octaves, offset, gain)
 // remainder term, remainder * Noise3(point) * exponent_array[i], drops both the offset and the
 // weight, which makes the result jump as octaves passes a whole number; this one is the next
 // whole octave's term scaled, so the result is continuous in `octaves`. Octaves clamped to
-// [0, 30] (0 gives 0), H >= 0, lacunarity in [1, 8]; finite for |offset| up to about 10 (the
-// weight of a negative run grows by at most 1 + |offset| per octave).
+// [0, 30] (0 gives 0), H >= 0, lacunarity in [1, 8], offset to +-PATINA_FRACTAL_MAX_OFFSET, and
+// the weight to >= -PATINA_FRACTAL_MAX_PRODUCT as well as <= 1 (a negative weight grows by up to
+// 1 + |offset| per octave): then every term is below 1e34 and the sum finite.
 float hybrid_multifractal(point p; float H, lacunarity, octaves, offset)
 {
     float h = max(H, 0);
     float lac = clamp(lacunarity, 1, 8);
     float oct = clamp(octaves, 0, PATINA_FRACTAL_MAX_OCTAVES);
+    float o = clamp(offset, -PATINA_FRACTAL_MAX_OFFSET, PATINA_FRACTAL_MAX_OFFSET);
     float result = 0, weight = 1, signal;
     point pp = p;
     float i;
     for (i = 0; i < oct; i += 1) {
-        weight = min(weight, 1);
-        signal = (snoise3(pp) + offset) * pow(lac, -h * i);
+        weight = clamp(weight, -PATINA_FRACTAL_MAX_PRODUCT, 1);
+        signal = (snoise3(pp) + o) * pow(lac, -h * i);
         result += clamp(oct - i, 0, 1) * weight * signal;
         weight *= signal;
         pp = clamp(pp * lac, -PATINA_FRACTAL_MAX_COORD, PATINA_FRACTAL_MAX_COORD);
@@ -155,15 +170,6 @@ float fbm_filtered(point p; float H, lacunarity, octaves, width)
     return fbm(p, H, lac, min(octaves, -log(w) / max(log(lac), 1e-6)));
 }
 
-// The largest |offset| the multiplicative functions (multifractal, hetero_terrain) use: a larger
-// one is taken as +-PATINA_FRACTAL_MAX_OFFSET. Musgrave: the multifractal "approaches a flat plane
-// as offset gets large (i.e., around 100 or so)" (T&M L10228), so nothing is lost at 1e4.
-#ifndef PATINA_FRACTAL_MAX_OFFSET
-#define PATINA_FRACTAL_MAX_OFFSET 1e4
-#endif
-
-// The bound on multifractal's running product: |value| is clamped to this after every octave.
-#define PATINA_FRACTAL_MAX_PRODUCT 1e30
 
 // Musgrave's multiplicative-cascade multifractal (T&M ch. 14, L10211-10232): the product over
 // i < floor(octaves) of (snoise3(p lacunarity^i) + offset) * lacunarity^(-H i); 1 for octaves 0

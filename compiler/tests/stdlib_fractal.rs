@@ -164,11 +164,12 @@ mod fractal {
         let h = h.max(0.0);
         let lac = lacunarity.clamp(1.0, 8.0);
         let n = octaves.clamp(0.0, MAX_OCTAVES).floor();
+        let o = offset.clamp(-1e4, 1e4);
         let (mut result, mut weight) = (0.0, 1.0);
         let mut pp = p;
         let mut i = 0.0;
         while i < n {
-            let s = offset - snoise3(pp).abs();
+            let s = o - snoise3(pp).abs();
             let signal = s * s * weight;
             result += signal * lac.powf(-h * i);
             weight = (signal * gain).clamp(0.0, 1.0);
@@ -183,19 +184,20 @@ mod fractal {
         let lac = lacunarity.clamp(1.0, 8.0);
         let oct = octaves.clamp(0.0, MAX_OCTAVES);
         let n = oct.floor();
+        let o = offset.clamp(-1e4, 1e4);
         let (mut result, mut weight) = (0.0, 1.0f64);
         let mut pp = p;
         let mut i = 0.0;
         while i < n {
-            weight = weight.min(1.0);
-            let signal = (snoise3(pp) + offset) * lac.powf(-h * i);
+            weight = weight.clamp(-1e30, 1.0);
+            let signal = (snoise3(pp) + o) * lac.powf(-h * i);
             result += weight * signal;
             weight *= signal;
             pp = next(round, pp, lac);
             i += 1.0;
         }
-        weight = weight.min(1.0);
-        let signal = (snoise3(pp) + offset) * lac.powf(-h * n);
+        weight = weight.clamp(-1e30, 1.0);
+        let signal = (snoise3(pp) + o) * lac.powf(-h * n);
         result + (oct - n) * weight * signal
     }
 
@@ -438,6 +440,15 @@ fn extreme_args() -> Vec<Args> {
                         args.push(Args::new(p, h, lac, oct, width));
                     }
                 }
+            }
+        }
+        // the multifractals' offsets and gains at their extremes
+        for (offset, gain) in [(0.0, 0.0), (1e4, 1e30), (-1e4, 1.0), (1e30, 2.0), (-1e30, -1e30)] {
+            for (h, lac) in [(0.0, 1.0), (2.0, 8.0), (0.0, 8.0)] {
+                let mut a = Args::new(p, h, lac, 30.0, 1e-3);
+                a.offset = offset;
+                a.gain = gain;
+                args.push(a);
             }
         }
     }

@@ -1,8 +1,8 @@
 //! The standard library's fractal sums (`stdlib/fractal.sl`) on the GPU: the shader of
 //! `compiler/tests/stdlib_fractal.rs` compiled as a compute kernel by the WGSL backend, against
 //! the interpreter's f32 mode, with every parameter varying per point: ordinary argument sets
-//! and the extremes (octaves 0 and 30, H 0 and 2, lacunarity 1 and 8, coordinates ±1e4 and
-//! ±1e6, width 0 and 1e30).
+//! and the extremes (octaves 0 and 30, H 0 and 2, lacunarity 1 and 8, coordinates ±1e4, ±1e6,
+//! ±1e7, ±1e30 and denormals, width 0 and 1e30, offsets 0, ±1e4 and ±1e30).
 //!
 //! The noise is bit-exact between the two (runtime/tests/stdlib_noise_gpu.rs); what differs is
 //! `pow` (lavapipe computes exp2(b log2 a) in f32, up to 89 ulp: shared/notes/naga-wgpu-facts.md
@@ -91,6 +91,12 @@ fn args() -> Vec<[f32; 9]> {
                         args.push([p[0], p[1], p[2], h, lac, oct, width, 1.0, 2.0]);
                     }
                 }
+            }
+        }
+        // the multifractals' offsets and gains at their extremes
+        for (offset, gain) in [(0.0, 0.0), (1e4, 1e30), (-1e4, 1.0), (1e30, 2.0), (-1e30, -1e30)] {
+            for (h, lac) in [(0.0, 1.0), (2.0, 8.0), (0.0, 8.0)] {
+                args.push([p[0], p[1], p[2], h, lac, 30.0, 1e-3, offset, gain]);
             }
         }
     }

@@ -22,8 +22,10 @@
 // backends: the octave count is clamped to [0, 30] (PATINA_FRACTAL_MAX_OCTAVES); H below 0 is
 // taken as 0 (weights never exceed 1); lacunarity is clamped to [1, 8]; the scaled points are
 // clamped to +-1e30 (PATINA_FRACTAL_MAX_COORD), so that p lacunarity^i stays finite for every
-// finite p. Octave i samples the noise at p * lacunarity^i, so in f32 the finer octaves lose their fraction sooner than the first (stdlib/noise.sl: past 2^23 every f32 is an integer
-// and the noise is 0; those octaves then add nothing, which is finite but not detail).
+// finite p; the multifractals' offsets are clamped to +-1e4 (PATINA_FRACTAL_MAX_OFFSET). Octave i
+// samples the noise at p * lacunarity^i, so in f32 the finer octaves lose their fraction sooner
+// than the first (stdlib/noise.sl: past 2^23 every f32 is an integer and the noise is 0; those
+// octaves then add nothing, which is finite but not detail).
 //
 // Precision (measured by compiler/tests/stdlib_fractal.rs and runtime/tests/stdlib_fractal_gpu.rs):
 // the f64 interpreter agrees with an independent Rust port to the last bit (tested within
@@ -48,8 +50,8 @@
 // hashes to, not the fraction of the others.
 #define PATINA_FRACTAL_MAX_COORD 1e30
 
-// The largest |offset| the multifractals (ridged, hybrid, multifractal, hetero_terrain) use: a larger
-// one is taken as +-PATINA_FRACTAL_MAX_OFFSET. Musgrave: the multifractal "approaches a flat plane
+// The largest |offset| the multifractals (ridged, hybrid, multifractal, hetero_terrain) use: a
+// larger one is taken as +-PATINA_FRACTAL_MAX_OFFSET. Musgrave: the multifractal "approaches a flat plane
 // as offset gets large (i.e., around 100 or so)" (T&M L10228), so nothing is lost at 1e4.
 #ifndef PATINA_FRACTAL_MAX_OFFSET
 #define PATINA_FRACTAL_MAX_OFFSET 1e4

@@ -47,10 +47,6 @@
 #define HART_CLAMP 0
 #define HART_MOD 1
 #define HART_MAX_TERMS 8
-// The size of a colour table: hart_colormap takes a color[HART_MAX_COLORS] and the count n of
-// entries used (n <= HART_MAX_COLORS). A fixed size, because an unsized `color clut[]` parameter
-// currently reads its first element at every index (a compiler defect, reported with issue 7).
-#define HART_MAX_COLORS 8
 
 // The guarded point: each coordinate clamped to +-1e9.
 point hart_clamp_point(point p)
@@ -297,7 +293,7 @@ float hart_filterwidth(vector grad; float filterwidth)
 
 // The piecewise-linear colour ramp through clut[0 .. m] at x in segment units (knot j at x = j;
 // x outside [0, m] extrapolates an end segment, which the callers avoid).
-color hart_ramp_at(float x; color clut[HART_MAX_COLORS]; float m)
+color hart_ramp_at(float x; color clut[]; float m)
 {
     float j = clamp(floor(x), 0, max(m - 1, 0));
     int k = int(j);
@@ -306,7 +302,7 @@ color hart_ramp_at(float x; color clut[HART_MAX_COLORS]; float m)
 
 // The ramp's integral from 0 to y in segment units, y in [0, m]: the whole segments' trapezoids
 // plus the part of the segment holding y.
-color hart_ramp_integral(float y; color clut[HART_MAX_COLORS]; float m)
+color hart_ramp_integral(float y; color clut[]; float m)
 {
     float j = clamp(floor(y), 0, max(m - 1, 0));
     int kj = int(j);
@@ -321,26 +317,27 @@ color hart_ramp_integral(float y; color clut[HART_MAX_COLORS]; float m)
 }
 
 // The ramp with the mode's extension at x in segment units: modulo m, or clamped to [0, m].
-color hart_ramp_ext(float x; color clut[HART_MAX_COLORS]; float m; float mode)
+color hart_ramp_ext(float x; color clut[]; float m; float mode)
 {
     float y = mode == HART_MOD ? x - m * floor(x / m) : clamp(x, 0, m);
     return hart_ramp_at(y, clut, m);
 }
 
 // APST's colour map c(f) (2) with its box filter (9): the average over [f - width/2,
-// f + width/2] of the piecewise-linear ramp through the n colours clut[0 .. n-1] (n at most HART_MAX_COLORS) at
-// f = 0, 1/(n-1), .., 1, extended modulo 1 (mode HART_MOD: the ramp repeats, jumping from
-// clut[n-1] back to clut[0] at each integer, as the wood map does) or clamped (HART_CLAMP:
-// clut[0] below 0, clut[n-1] above 1). Width 0 gives the point value. The average is exact
-// for any width: below 1e-6 segments, the point value; below one segment (the interval holds at
-// most one knot), the length-weighted midpoint values of its two linear pieces; otherwise the
-// difference of the ramp's closed-form integral over the width (whole periods times the
-// period's integral in the modulo mode; the end colours times the lengths outside [0, 1] in the
-// clamp mode). As the width grows the result tends to the ramp's mean (modulo) or to the mean of
-// the end colours (clamp). n below 2 gives clut[0]. Widths are taken as |width|, at most 1e30.
-color hart_colormap(float f, width; float mode; color clut[HART_MAX_COLORS]; float n)
+// f + width/2] of the piecewise-linear ramp through the n colours clut[0 .. n-1] (n at most the
+// table's length) at f = 0, 1/(n-1), .., 1, extended modulo 1 (mode HART_MOD: the ramp repeats,
+// jumping from clut[n-1] back to clut[0] at each integer, as the wood map does) or clamped
+// (HART_CLAMP: clut[0] below 0, clut[n-1] above 1). Width 0 gives the point value. The average
+// is exact for any width: below 1e-6 segments, the point value; below one segment (the interval
+// holds at most one knot), the length-weighted midpoint values of its two linear pieces;
+// otherwise the difference of the ramp's closed-form integral over the width (whole periods
+// times the period's integral in the modulo mode; the end colours times the lengths outside
+// [0, 1] in the clamp mode). As the width grows the result tends to the ramp's mean (modulo) or
+// to the mean of the end colours (clamp). n below 2 gives clut[0]. Widths are taken as |width|,
+// at most 1e30.
+color hart_colormap(float f, width; float mode; color clut[]; float n)
 {
-    float m = max(floor(min(n, HART_MAX_COLORS)) - 1, 0);
+    float m = max(floor(n) - 1, 0);
     if (m == 0)
         return clut[0];
     float h = min(0.5 * m * min(abs(width), 1e30), 1e30);
@@ -374,7 +371,7 @@ color hart_colormap(float f, width; float mode; color clut[HART_MAX_COLORS]; flo
 }
 
 // The unfiltered colour map: hart_colormap at width 0.
-color hart_colormap(float f; float mode; color clut[HART_MAX_COLORS]; float n)
+color hart_colormap(float f; float mode; color clut[]; float n)
 {
     return hart_colormap(f, 0, mode, clut, n);
 }
@@ -392,8 +389,7 @@ color hart_wood(point p; float fw)
 {
     matrix Q = (1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0);
     matrix T = (4, 0, 0, 0,  0, 4, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1);
-    constant color clut[HART_MAX_COLORS] = {
-        color(0.86, 0.66, 0.42), color(0.50, 0.30, 0.14), 0, 0, 0, 0, 0, 0};
+    constant color clut[2] = {color(0.86, 0.66, 0.42), color(0.50, 0.30, 0.14)};
     float f = hart_solid(p, Q, 1, 1, 1, T, 1, vector(0), fw);
     vector g = hart_solid_gradient(p, Q, 1, 1, 1, T, 1, vector(0), fw);
     return hart_colormap(f, hart_filterwidth(g, fw), HART_MOD, clut, 2);
@@ -406,9 +402,9 @@ color hart_marble(point p; float fw)
 {
     matrix Q = (0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0.5,  0, 0, 0.5, 0);
     matrix T = (2, 0, 0, 0,  0, 2, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
-    constant color clut[HART_MAX_COLORS] = {
+    constant color clut[6] = {
         color(0.93, 0.92, 0.89), color(0.85, 0.84, 0.82), color(0.62, 0.62, 0.66),
-        color(0.30, 0.30, 0.36), color(0.70, 0.70, 0.72), color(0.93, 0.92, 0.89), 0, 0};
+        color(0.30, 0.30, 0.36), color(0.70, 0.70, 0.72), color(0.93, 0.92, 0.89)};
     float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
     vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
     return hart_colormap(f, hart_filterwidth(g, fw), HART_MOD, clut, 6);
@@ -420,8 +416,7 @@ color hart_clouds(point p; float fw)
 {
     matrix Q = 0;
     matrix T = (2, 0, 0, 0,  0, 2, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
-    constant color clut[HART_MAX_COLORS] = {
-        color(0.25, 0.45, 0.85), color(1, 1, 1), 0, 0, 0, 0, 0, 0};
+    constant color clut[2] = {color(0.25, 0.45, 0.85), color(1, 1, 1)};
     float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
     vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
     return hart_colormap(f, hart_filterwidth(g, fw), HART_CLAMP, clut, 2);
@@ -435,9 +430,8 @@ color hart_fire(point p; float phase, fw)
 {
     matrix Q = (0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0.5,  0, 0, 0.5, 0);
     matrix T = (2, 0, 0, 0,  0, 0, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
-    constant color clut[HART_MAX_COLORS] = {
-        color(0, 0, 0), color(0.75, 0.1, 0), color(1, 0.5, 0), color(1, 0.9, 0.3), color(1, 1, 1),
-        0, 0, 0};
+    constant color clut[5] = {
+        color(0, 0, 0), color(0.75, 0.1, 0), color(1, 0.5, 0), color(1, 0.9, 0.3), color(1, 1, 1)};
     float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0, 0, phase), fw);
     vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0, 0, phase), fw);
     return hart_colormap(f, hart_filterwidth(g, fw), HART_CLAMP, clut, 5);

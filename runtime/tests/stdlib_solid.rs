@@ -378,8 +378,8 @@ const SHADER: &str = "#include <solid.sl>\n\
         f = hart_solid(P, Q, nterms, amp, gain, T, lac, phase, fw);\n\
         g = hart_solid_gradient(P, Q, nterms, amp, gain, T, lac, phase, fw);\n\
         fwo = hart_filterwidth(g, fw);\n\
-        constant color clut[HART_MAX_COLORS] = {color(0.1, 0.2, 0.3), color(0.9, 0.5, 0.1),\n\
-            color(0.4, 1, 0.6), color(0, 0.3, 0.8), 0, 0, 0, 0};\n\
+        constant color clut[4] = {color(0.1, 0.2, 0.3), color(0.9, 0.5, 0.1),\n\
+            color(0.4, 1, 0.6), color(0, 0.3, 0.8)};\n\
         cmod = hart_colormap(cf, cw, HART_MOD, clut, 4);\n\
         cclamp = hart_colormap(cf, cw, HART_CLAMP, clut, 4);\n\
         wood = hart_wood(P, fw);\n\

@@ -157,21 +157,39 @@ float hybrid_multifractal(point p; float H, lacunarity, octaves, offset)
     return result;
 }
 
+// The octave count a filter width allows: min(octaves, k), k = log(1 / width) / log(lacunarity)
+// with lacunarity clamped to [1, 8] and |width| to >= 1e-30 (fbm_filtered's rule, below). Pass it
+// as `octaves` to filter any sum here; the functions with a fractional last octave (fbm,
+// turbulence, hybrid_multifractal, hetero_terrain, distfbm) are then continuous in the width,
+// the whole-octave ones (ridged_multifractal, multifractal) change in steps.
+float fractal_filter_octaves(float octaves, lacunarity, width)
+{
+    float lac = clamp(lacunarity, 1, 8);
+    float w = max(abs(width), 1e-30);
+    return min(octaves, -log(w) / max(log(lac), 1e-6));
+}
+
 // fBm clamped to a filter width: fbm(p, H, lacunarity, min(octaves, k)) with
 // k = log(1 / width) / log(lacunarity), the number of octaves whose feature size
 // lacunarity^-i is still above `width` (log2(1 / width) for lacunarity 2; compare Musgrave's
 // log2(resolution) - 2, L10173, and vfBm's cutoff at fw >= 1, L10524). k is fractional, so the
 // last octave kept fades in with the remainder (continuous in width). `width` is the filter
-// width of p (e.g. filterwidthp(P)); |width| below 1e-30 counts as 1e-30 (k = 99.7 at
-// lacunarity 2, so octaves limit), width >= 1 gives 0 (the average). Lacunarity 1 means no
-// frequency increase: k is unbounded and `octaves` alone limits. Same guards as fbm.
+// width of p (e.g. the sum of filterwidth over its coordinates); |width| below 1e-30 counts as
+// 1e-30 (k = 99.7 at lacunarity 2, so octaves limit), width >= 1 gives 0 (the average).
+// Lacunarity 1 means no frequency increase: k is unbounded and `octaves` alone limits. Same
+// guards as fbm.
 float fbm_filtered(point p; float H, lacunarity, octaves, width)
 {
-    float lac = clamp(lacunarity, 1, 8);
-    float w = max(abs(width), 1e-30);
-    return fbm(p, H, lac, min(octaves, -log(w) / max(log(lac), 1e-6)));
+    return fbm(p, H, clamp(lacunarity, 1, 8), fractal_filter_octaves(octaves, lacunarity, width));
 }
 
+// Perlin's turbulence clamped to a filter width: turbulence(p, min(octaves, log2(1 / width))),
+// fbm_filtered's rule at lacunarity 2 (compare Perlin's own loop, which stops at the pixel's
+// frequency, L8960-8990). Continuous in width; width >= 1 gives 0.
+float turbulence_filtered(point p; float octaves, width)
+{
+    return turbulence(p, fractal_filter_octaves(octaves, 2, width));
+}
 
 // Musgrave's multiplicative-cascade multifractal (T&M ch. 14, L10211-10232): the product over
 // i < floor(octaves) of (snoise3(p lacunarity^i) + offset) * lacunarity^(-H i); 1 for octaves 0

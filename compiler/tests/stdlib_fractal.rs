@@ -206,6 +206,11 @@ mod fractal {
         let w = width.abs().max(1e-30);
         fbm(round, p, h, lac, octaves.min(-w.ln() / lac.ln().max(1e-6)))
     }
+
+    pub fn turbulence_filtered(p: [f64; 3], octaves: f64, width: f64) -> f64 {
+        let w = width.abs().max(1e-30);
+        turbulence(p, octaves.min(-w.ln() / 2f64.ln().max(1e-6)))
+    }
     /// Musgrave's multiplicative multifractal with the stdlib's guards; also returns the product
     /// of max(1, |factor|) over the octaves (a bound on every partial product, for tolerances).
     pub fn multifractal(
@@ -286,10 +291,17 @@ const SHADER: &str = "#include <fractal.sl>\n\
     surface t(varying float H = 0.5, lac = 2, oct = 4, width = 0.01, offset = 1, gain = 2) {\n\
         Ci = color(fbm(P, H, lac, oct), turbulence(P, oct), fbm_filtered(P, H, lac, oct, width));\n\
         Oi = color(ridged_multifractal(P, H, lac, oct, offset, gain),\n\
-                   hybrid_multifractal(P, H, lac, oct, offset), 0);\n\
+                   hybrid_multifractal(P, H, lac, oct, offset), turbulence_filtered(P, oct, width));\n\
     }\n";
 
-const NAMES: [&str; 5] = ["fbm", "turbulence", "fbm_filtered", "ridged_multifractal", "hybrid_multifractal"];
+const NAMES: [&str; 6] = [
+    "fbm",
+    "turbulence",
+    "fbm_filtered",
+    "ridged_multifractal",
+    "hybrid_multifractal",
+    "turbulence_filtered",
+];
 
 /// One evaluation's inputs.
 #[derive(Clone, Copy, Debug)]
@@ -323,7 +335,7 @@ impl Args {
     }
 
     /// The five functions by the port.
-    fn reference(&self, round: fractal::Round) -> [f64; 5] {
+    fn reference(&self, round: fractal::Round) -> [f64; 6] {
         // The multifractals' offsets differ (ridged 1, hybrid 0.7 by Musgrave's suggestions) but
         // one shader parameter feeds both; the tests use `offset` for both.
         [
@@ -332,6 +344,7 @@ impl Args {
             fractal::fbm_filtered(round, self.p, self.h, self.lac, self.oct, self.width),
             fractal::ridged(round, self.p, self.h, self.lac, self.oct, self.offset, self.gain),
             fractal::hybrid(round, self.p, self.h, self.lac, self.oct, self.offset),
+            fractal::turbulence_filtered(self.p, self.oct, self.width),
         ]
     }
 }
@@ -345,7 +358,7 @@ fn program() -> CpuProgram {
 
 /// The five functions at each argument set, evaluated in precision `F`. The parameters are
 /// varying, so every point has its own.
-fn eval<F: Real>(program: &CpuProgram, args: &[Args]) -> Vec<[f64; 5]> {
+fn eval<F: Real>(program: &CpuProgram, args: &[Args]) -> Vec<[f64; 6]> {
     let mut e = Evaluator::<F>::new(program);
     let p: Vec<f64> = args.iter().flat_map(|a| a.p).collect();
     let col = |f: fn(&Args) -> f64| -> Vec<f64> { args.iter().map(f).collect() };
@@ -364,7 +377,7 @@ fn eval<F: Real>(program: &CpuProgram, args: &[Args]) -> Vec<[f64; 5]> {
     (0..args.len())
         .map(|i| {
             let (c, o) = (&out[0][3 * i..3 * i + 3], &out[1][3 * i..3 * i + 3]);
-            [c[0], c[1], c[2], o[0], o[1]]
+            [c[0], c[1], c[2], o[0], o[1], o[2]]
         })
         .collect()
 }
@@ -474,10 +487,10 @@ fn f64_mode_matches_the_port() {
     let mut args = ordinary_args();
     args.extend(extreme_args());
     let out = eval::<f64>(&program, &args);
-    let mut worst = [0.0f64; 5];
+    let mut worst = [0.0f64; 6];
     for (a, o) in args.iter().zip(&out) {
         let r = a.reference(f64_exact);
-        for f in 0..5 {
+        for f in 0..6 {
             let err = (o[f] - r[f]).abs();
             worst[f] = worst[f].max(err);
             assert!(err <= F64_TOL, "{}({a:?}) = {}, port {}", NAMES[f], o[f], r[f]);
@@ -491,11 +504,11 @@ fn f32_mode_is_close_to_the_port() {
     let program = program();
     let args = ordinary_args();
     let out = eval::<f32>(&program, &args);
-    let mut worst = [[0.0f64; 5]; 2];
+    let mut worst = [[0.0f64; 6]; 2];
     for (a, o) in args.iter().zip(&out) {
         let r = a.to_f32().reference(to_f32);
         let k = if a.lac == 2.0 { 0 } else { 1 };
-        for f in 0..5 {
+        for f in 0..6 {
             let err = (o[f] - r[f]).abs();
             worst[k][f] = worst[k][f].max(err);
             assert!(err <= F32_TOL, "{}({a:?}) = {}, port {}", NAMES[f], o[f], r[f]);
@@ -513,7 +526,7 @@ fn extremes_are_finite_in_both_precisions() {
     let out64 = eval::<f64>(&program, &args);
     let out32 = eval::<f32>(&program, &args);
     for (i, a) in args.iter().enumerate() {
-        for f in 0..5 {
+        for f in 0..6 {
             assert!(out64[i][f].is_finite(), "f64 {}({a:?}) = {}", NAMES[f], out64[i][f]);
             assert!(out32[i][f].is_finite(), "f32 {}({a:?}) = {}", NAMES[f], out32[i][f]);
         }
@@ -521,7 +534,7 @@ fn extremes_are_finite_in_both_precisions() {
             assert_eq!([out64[i][0], out64[i][1], out64[i][3], out64[i][4]], [0.0; 4], "octaves 0: {a:?}");
         }
         if a.width >= 1.0 {
-            assert_eq!(out64[i][2], 0.0, "width >= 1 keeps no octave: {a:?}");
+            assert_eq!([out64[i][2], out64[i][5]], [0.0; 2], "width >= 1 keeps no octave: {a:?}");
         }
     }
     println!("{} extreme argument sets finite in f64 and f32", args.len());
@@ -573,7 +586,7 @@ fn fractional_octaves_are_continuous() {
     for precision in ["f64", "f32"] {
         let out =
             if precision == "f64" { eval::<f64>(&program, &args) } else { eval::<f32>(&program, &args) };
-        let mut worst = [0.0f64; 5];
+        let mut worst = [0.0f64; 6];
         for (t, c) in out.chunks_exact(3).zip(args.chunks_exact(3)) {
             for f in [0, 1, 2, 4] {
                 let jump = (t[0][f] - t[1][f]).abs().max((t[2][f] - t[1][f]).abs());

@@ -173,8 +173,23 @@ fn colour_spaces() {
 }
 
 #[test]
-fn noise() {
-    run_cases(&cases::noise(), &[]);
+fn noise_float() {
+    run_cases(&cases::noise(cases::NoiseGroup::Float), &[]);
+}
+
+#[test]
+fn noise_colour() {
+    run_cases(&cases::noise(cases::NoiseGroup::Colour), &[]);
+}
+
+#[test]
+fn noise_cell() {
+    run_cases(&cases::noise(cases::NoiseGroup::Cell), &[]);
+}
+
+#[test]
+fn noise_periodic() {
+    run_cases(&cases::noise(cases::NoiseGroup::Periodic), &[]);
 }
 
 #[test]

@@ -706,8 +706,23 @@ fn colour_spaces() {
 }
 
 #[test]
-fn noise() {
-    run_group("noise", cases::noise(), &[], same);
+fn noise_float() {
+    run_group("noise_float", cases::noise(cases::NoiseGroup::Float), &[], same);
+}
+
+#[test]
+fn noise_colour() {
+    run_group("noise_colour", cases::noise(cases::NoiseGroup::Colour), &[], same);
+}
+
+#[test]
+fn noise_cell() {
+    run_group("noise_cell", cases::noise(cases::NoiseGroup::Cell), &[], same);
+}
+
+#[test]
+fn noise_periodic() {
+    run_group("noise_periodic", cases::noise(cases::NoiseGroup::Periodic), &[], same);
 }
 
 #[test]

@@ -143,6 +143,7 @@ pub const UNIT: Dom = range(0.0, 1.0);
 
 /// One function call: `body` with `$k` for argument k and `$o` for the output (`$o0`, `$o1`,
 /// ... for several).
+#[derive(Clone)]
 pub struct Case {
     pub body: &'static str,
     pub args: Vec<(&'static str, Dom)>,
@@ -473,11 +474,12 @@ pub fn colour_spaces() -> Vec<Case> {
 
 /// The noise built-ins (`noise`, `snoise`, `pnoise`, `cellnoise`), written in the language
 /// (stdlib/builtins.sl over stdlib/noise.sl and stdlib/cellular.sl): floor, integer hashing and
-/// polynomials, so the two backends agree bit for bit. Every overload, float and colour results
-/// (a colour result is three float evaluations at offset domains or seeds); coordinates across
+/// polynomials, so the two backends agree bit for bit. Every overload, with float results and
+/// with colour results (three float evaluations at offset domains or seeds); coordinates across
 /// many cells, both signs, on lattice points and far out; periods including the guarded ones
-/// (below 1, fractional, beyond 256).
-pub fn noise() -> Vec<Case> {
+/// (below 1, fractional, beyond 256). In groups small enough for a GPU driver to compile quickly
+/// (each call inlines a whole noise).
+pub fn noise(group: NoiseGroup) -> Vec<Case> {
     let e = tol::EXACT;
     const COORDINATES: &[f64] = &[0.0, -0.0, 0.5, -0.5, 1.0, 255.5, -256.25, 1e4 + 0.25, -1e6, 3.0e9];
     const PERIODS: &[f64] = &[1.0, 0.0, -3.0, 0.5, 2.5, 7.0, 256.0, 300.0];
@@ -485,39 +487,46 @@ pub fn noise() -> Vec<Case> {
     let p = ("point", with(-300.0, 300.0, COORDINATES));
     let q = (F, with(1.0, 9.0, PERIODS));
     let qp = ("point", with(1.0, 9.0, PERIODS));
-    let mut cases = Vec::new();
-    for out in [F, "color"] {
-        for name in ["noise", "snoise", "cellnoise"] {
-            let calls: [(&'static str, Vec<(&'static str, Dom)>); 4] = match name {
-                "noise" => [
-                    ("$o = noise($0);", vec![x]),
-                    ("$o = noise($0, $1);", vec![x, x]),
-                    ("$o = noise($0);", vec![p]),
-                    ("$o = noise($0, $1);", vec![p, x]),
-                ],
-                "snoise" => [
-                    ("$o = snoise($0);", vec![x]),
-                    ("$o = snoise($0, $1);", vec![x, x]),
-                    ("$o = snoise($0);", vec![p]),
-                    ("$o = snoise($0, $1);", vec![p, x]),
-                ],
-                _ => [
-                    ("$o = cellnoise($0);", vec![x]),
-                    ("$o = cellnoise($0, $1);", vec![x, x]),
-                    ("$o = cellnoise($0);", vec![p]),
-                    ("$o = cellnoise($0, $1);", vec![p, x]),
-                ],
-            };
-            for (body, args) in calls {
-                cases.push(c1(body, &args, out, e));
-            }
-        }
-        cases.push(c1("$o = pnoise($0, $1);", &[x, q], out, e));
-        cases.push(c1("$o = pnoise($0, $1, $2, $3);", &[x, x, q, q], out, e));
-        cases.push(c1("$o = pnoise($0, $1);", &[p, qp], out, e));
-        cases.push(c1("$o = pnoise($0, $1, $2, $3);", &[p, x, qp, q], out, e));
+    let domains = |call: [&'static str; 4], out: &'static str| {
+        vec![
+            c1(call[0], &[x], out, e),
+            c1(call[1], &[x, x], out, e),
+            c1(call[2], &[p], out, e),
+            c1(call[3], &[p, x], out, e),
+        ]
+    };
+    const NOISE: [&str; 4] =
+        ["$o = noise($0);", "$o = noise($0, $1);", "$o = noise($0);", "$o = noise($0, $1);"];
+    const SNOISE: [&str; 4] =
+        ["$o = snoise($0);", "$o = snoise($0, $1);", "$o = snoise($0);", "$o = snoise($0, $1);"];
+    const CELLNOISE: [&str; 4] =
+        ["$o = cellnoise($0);", "$o = cellnoise($0, $1);", "$o = cellnoise($0);", "$o = cellnoise($0, $1);"];
+    match group {
+        NoiseGroup::Float => [domains(NOISE, F), domains(SNOISE, F)].concat(),
+        NoiseGroup::Colour => domains(NOISE, "color"),
+        NoiseGroup::Cell => [domains(CELLNOISE, F), domains(CELLNOISE, "color")].concat(),
+        NoiseGroup::Periodic => vec![
+            c1("$o = pnoise($0, $1);", &[x, q], F, e),
+            c1("$o = pnoise($0, $1, $2, $3);", &[x, x, q, q], F, e),
+            c1("$o = pnoise($0, $1);", &[p, qp], F, e),
+            c1("$o = pnoise($0, $1, $2, $3);", &[p, x, qp, q], F, e),
+            c1("$o = pnoise($0, $1);", &[x, q], "color", e),
+            c1("$o = pnoise($0, $1);", &[p, qp], "color", e),
+        ],
     }
-    cases
+}
+
+/// The groups of [`noise`].
+#[derive(Clone, Copy, Debug)]
+pub enum NoiseGroup {
+    /// `noise` and `snoise` over each domain, float results.
+    Float,
+    /// `noise` over each domain, colour results (`snoise`'s are the same code, scaled).
+    Colour,
+    /// `cellnoise`, float and colour.
+    Cell,
+    /// `pnoise` over each domain (float), and colour results over two.
+    Periodic,
 }
 
 pub fn splines() -> Vec<Case> {

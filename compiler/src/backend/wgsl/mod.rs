@@ -22,6 +22,7 @@ mod kernel;
 mod matrices;
 mod module;
 mod strings;
+mod tables;
 mod textures;
 mod uses;
 

@@ -23,6 +23,8 @@ pub(crate) struct ModuleBuilder {
     uniforms: Vec<(String, Type, UniformSource)>,
     /// The textures read: (name, dimension, binding, variable).
     textures: Vec<(String, naga::ImageDimension, u32, Handle<GlobalVariable>)>,
+    /// Constant tables by type and contents (`tables.rs`).
+    pub(super) tables: FxHashMap<(Type, Vec<u64>), Handle<GlobalVariable>>,
 }
 
 /// A naga scalar for the language's scalar bases.
@@ -68,6 +70,7 @@ impl ModuleBuilder {
             uniform_var,
             uniforms: Vec::new(),
             textures: Vec::new(),
+            tables: FxHashMap::default(),
         }
     }
 

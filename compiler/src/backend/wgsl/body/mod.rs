@@ -44,6 +44,8 @@ pub(crate) struct Translator<'a> {
     pub random_sites: u32,
     names: FxHashMap<LocalId, String>,
     functions: u32,
+    /// The constant tables among the locals, which live in initialized module variables.
+    tables: FxHashMap<LocalId, super::tables::Contents>,
 }
 
 /// A value with its language type, for the helpers that dispatch on types.
@@ -73,6 +75,7 @@ impl<'a> Translator<'a> {
             random_sites: 0,
             names,
             functions: 0,
+            tables: super::tables::find(shader),
         }
     }
 
@@ -89,6 +92,9 @@ impl<'a> Translator<'a> {
     pub fn local_var(&mut self, l: LocalId) -> Handle<naga::GlobalVariable> {
         let local = self.shader.local(l);
         let mut name = self.names[&l].clone();
+        if let Some(contents) = self.tables.get(&l) {
+            return self.mb.table(&name, local.ty, contents);
+        }
         if local.rate.perlight {
             name = format!("{name}_L{}", self.light.unwrap_or(0));
         }
@@ -143,6 +149,8 @@ impl<'a> Translator<'a> {
         }
         self.memo.clear();
         match stmt {
+            // A constant table's declaration: the module variable's initializer holds it.
+            Stmt::Store { place: Place::Local(l), .. } if self.tables.contains_key(l) => {}
             Stmt::Store { place, value, .. } => {
                 let v = self.expr(*value)?;
                 let p = self.place(place)?;

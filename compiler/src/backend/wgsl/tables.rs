@@ -1,0 +1,147 @@
+//! Constant tables: a `constant` array variable whose only store is its declaration with literal
+//! elements (a permutation or gradient table) becomes one private module variable with that
+//! initializer, shared by every inlined copy with the same contents, instead of a composite store
+//! at each call. The stdlib's noises declare their tables inside the functions, so a shader with
+//! many noise calls would otherwise build the same 256-entry array for every call.
+
+use naga::{Expression, Handle, Literal as NLit, Span};
+use rustc_hash::FxHashMap;
+
+use super::module::ModuleBuilder;
+use crate::ir::types::{Base, Frequency, Type};
+use crate::ir::{Block, ExprId, ExprKind, Literal, LocalId, Place, Shader, Stmt};
+
+/// A table's element values, as naga literals (their bits identify the table).
+pub(crate) type Contents = Vec<NLit>;
+
+/// The locals of `shader` that are constant tables, with their contents.
+pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
+    let mut stores: FxHashMap<LocalId, (u32, Option<ExprId>)> = FxHashMap::default();
+    count(shader, &shader.body, &mut stores);
+    stores
+        .into_iter()
+        .filter_map(|(l, (n, value))| {
+            let local = shader.local(l);
+            let table = local.declared
+                && local.rate.frequency == Frequency::Constant
+                && !local.rate.perlight
+                && local.ty.array.is_some()
+                && matches!(local.ty.base, Base::Float | Base::Int | Base::Uint | Base::Bool);
+            if !table || n != 1 {
+                return None;
+            }
+            let ExprKind::Construct(parts) = &shader.expr(value?).kind else { return None };
+            let contents: Option<Contents> =
+                parts.iter().map(|&p| literal(shader, p, local.ty.base)).collect();
+            contents.filter(|c| c.len() as u32 == local.ty.array.unwrap_or(0)).map(|c| (l, c))
+        })
+        .collect()
+}
+
+/// Counts the stores into each local (any store through an index counts, and so does a
+/// built-in's output); keeps the value of a whole-variable store.
+fn count(shader: &Shader, block: &Block, out: &mut FxHashMap<LocalId, (u32, Option<ExprId>)>) {
+    for stmt in block {
+        match stmt {
+            Stmt::Store { place, value, .. } => {
+                if let Some(l) = place.root_local() {
+                    let entry = out.entry(l).or_insert((0, None));
+                    entry.0 += 1;
+                    entry.1 = matches!(place, Place::Local(_)).then_some(*value);
+                }
+            }
+            Stmt::Eval(id) => {
+                if let ExprKind::Builtin(b, args) = &shader.expr(*id).kind {
+                    for (p, a) in b.params.iter().zip(args) {
+                        if let (true, ExprKind::Local(l)) = (p.output, &shader.expr(*a).kind) {
+                            out.entry(*l).or_insert((0, None)).0 += 2;
+                        }
+                    }
+                }
+            }
+            Stmt::If { then, otherwise, .. } => {
+                count(shader, then, out);
+                count(shader, otherwise, out);
+            }
+            Stmt::Loop { body, step, .. } => {
+                count(shader, body, out);
+                count(shader, step, out);
+            }
+            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                count(shader, body, out)
+            }
+            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+        }
+    }
+}
+
+/// A literal element of type `base`, converted as the interpreter converts it.
+fn literal(shader: &Shader, id: ExprId, base: Base) -> Option<NLit> {
+    let e = shader.expr(id);
+    let value = match &e.kind {
+        ExprKind::Literal(l) => l.clone(),
+        ExprKind::Convert(inner) => match &shader.expr(*inner).kind {
+            ExprKind::Literal(l) => l.clone(),
+            _ => return None,
+        },
+        _ => return None,
+    };
+    Some(match (base, value) {
+        (Base::Float, Literal::Float(x)) => NLit::F32(x as f32),
+        (Base::Float, Literal::Int(i)) => NLit::F32(i as f32),
+        (Base::Float, Literal::Uint(u)) => NLit::F32(u as f32),
+        (Base::Int, Literal::Int(i)) => NLit::I32(i),
+        (Base::Uint, Literal::Uint(u)) => NLit::U32(u),
+        (Base::Uint, Literal::Int(i)) if i >= 0 => NLit::U32(i as u32),
+        (Base::Bool, Literal::Bool(b)) => NLit::Bool(b),
+        _ => return None,
+    })
+}
+
+impl ModuleBuilder {
+    /// The private variable initialized with `contents` (of type `ty`), made on first use and
+    /// shared by every table with the same contents.
+    pub(crate) fn table(
+        &mut self,
+        name: &str,
+        ty: Type,
+        contents: &Contents,
+    ) -> Handle<naga::GlobalVariable> {
+        let key = (ty, contents.iter().map(bits).collect::<Vec<u64>>());
+        if let Some(h) = self.tables.get(&key) {
+            return *h;
+        }
+        let array = self.ty(ty, false);
+        let elements: Vec<Handle<Expression>> = contents
+            .iter()
+            .map(|l| self.module.global_expressions.append(Expression::Literal(*l), Span::UNDEFINED))
+            .collect();
+        let init = self
+            .module
+            .global_expressions
+            .append(Expression::Compose { ty: array, components: elements }, Span::UNDEFINED);
+        let h = self.module.global_variables.append(
+            naga::GlobalVariable {
+                name: Some(name.to_string()),
+                space: naga::AddressSpace::Private,
+                binding: None,
+                ty: array,
+                init: Some(init),
+                memory_decorations: naga::MemoryDecorations::empty(),
+            },
+            Span::UNDEFINED,
+        );
+        self.tables.insert(key, h);
+        h
+    }
+}
+
+fn bits(l: &NLit) -> u64 {
+    match *l {
+        NLit::F32(x) => u64::from(x.to_bits()),
+        NLit::I32(i) => u64::from(i as u32) | 1 << 32,
+        NLit::U32(u) => u64::from(u) | 2 << 32,
+        NLit::Bool(b) => u64::from(b) | 3 << 32,
+        _ => u64::MAX,
+    }
+}

@@ -13,12 +13,16 @@
 // without `sat` builds it on each call (N additions). w <= 0 gives the
 // unfiltered colortable(table, x, wrap).
 //
-// Table sizes: the functions are defined for arrays of 2 to 32, 48, 64, 128 and 256 colours. The
-// language's open-length array parameters (`color table[]`) cannot be used for this yet (a compiler
-// bug: inside an inlined function every element of such a parameter reads as element 0), so each
-// size is its own overload, made by the macro PATINA_COLOR_TABLE(N); write
-// `PATINA_COLOR_TABLE(20)` at the top level of a shader file, after the #include, for another
-// size.
+// MIP map: mipcolortable(mip, n, x, w, wrap) is Hart's colour-table MIP map (section 3.3.1,
+// L237-243, errata E10) from the levels `mip` of a table of n = 2^k entries
+// (PATINA_COLORTABLE_MIP), w as for filteredcolortable: an approximation of the box filter,
+// exactly colortable for w <= 1/n and the table's mean for w >= 1.
+//
+// Table sizes: colortable and filteredcolortable are defined for arrays of 2 to 32, 48, 64, 128
+// and 256 colours, each size its own overload, made by the macro PATINA_COLOR_TABLE(N) (written
+// when open-length array parameters read every element as element 0, a compiler bug since fixed);
+// write `PATINA_COLOR_TABLE(20)` at the top level of a shader file, after the #include, for
+// another size. mipcolortable takes an open-length array (`color mip[]`) and the table's length.
 //
 // Colour spaces and colour splines are built in: ctransform and the colour casts
 // (`color "hsv" (h, s, v)`) convert between rgb, hsv, hsl, xyz/XYZ, xyY and YIQ, and spline takes
@@ -45,9 +49,8 @@ float _patina_ctable_entry(float n, x, wrap)
 // The summed-area table of a colour table of n entries (a literal or constant): the statement
 // PATINA_COLORTABLE_SAT(table, sat, n) sets sat[j] = table[0] + ... + table[j] (Hart's csat,
 // eq. 13, L252), for the arrays `color table[n]` and `color sat[n]`. It is a macro, not a function
-// with an `output` array parameter, because of a second compiler bug: a function with an `output`
-// parameter that no shader calls fails to check (E0507 on the parameter), and every size but the
-// one a shader uses is uncalled. Its loop counter is a plain (varying) float, not `constant`, so
+// with an `output` array parameter, because of a second compiler bug when it was written (since
+// fixed): a function with an `output` parameter that no shader calls failed to check (E0507). Its loop counter is a plain (varying) float, not `constant`, so
 // that it may be used under a varying condition (a constant declaration there is E0605).
 #define PATINA_COLORTABLE_SAT(table, sat, n) \
     { \
@@ -58,6 +61,53 @@ float _patina_ctable_entry(float n, x, wrap)
             (sat)[_patina_j] = _patina_acc; \
         } \
     }
+
+// The colour-table MIP map (Hart's section 3.3.1, L237-243): the statement
+// PATINA_COLORTABLE_MIP(table, mip, n) fills `color mip[2n - 1]` with the levels of the n-entry
+// table, n a power of two: level 0 (the table itself) at mip[0 .. n), level k, of n/2^k entries,
+// at mip[2n - 2n/2^k ..), each entry the mean of the two entries of level k - 1 it covers, up to
+// the one-entry level log2(n) at mip[2n - 2] (the table's mean). A macro, as the summed-area table
+// is, with plain (varying) loop counters.
+#define PATINA_COLORTABLE_MIP(table, mip, n) \
+    { \
+        float _patina_j, _patina_src = 0, _patina_dst = (n), _patina_len = (n) / 2; \
+        for (_patina_j = 0; _patina_j < (n); _patina_j += 1) \
+            (mip)[_patina_j] = (table)[_patina_j]; \
+        while (_patina_len >= 1) { \
+            for (_patina_j = 0; _patina_j < _patina_len; _patina_j += 1) \
+                (mip)[_patina_dst + _patina_j] = \
+                    ((mip)[_patina_src + 2 * _patina_j] + (mip)[_patina_src + 2 * _patina_j + 1]) / 2; \
+            _patina_src = _patina_dst; \
+            _patina_dst += _patina_len; \
+            _patina_len /= 2; \
+        } \
+    }
+
+// The MIP-mapped lookup of an n-entry table (n a power of two) from its levels `mip`
+// (PATINA_COLORTABLE_MIP), x as in colortable, w in the units of x as in filteredcolortable (pass
+// filterwidth(x)): the width in entries is m = n w, the level i = clamp(floor(log2 m), 0, log2 n)
+// (Hart's clut_i[f/i], errata E10: entry floor(n/2^i modclamp(x)) of level i), blended linearly
+// with level i + 1 by the fractional part of log2 m (Hart's "more accurately the linear
+// interpolation"). m <= 1 is exactly colortable; m >= n the table's mean. The level is found by
+// halving m (at most log2 n times, exact), not from floor(log2 m), so the level choice does not
+// depend on the accuracy of log; only the blend weight t = log2 of a number in [1, 2) uses it.
+color mipcolortable(color mip[]; float n, x, w, wrap)
+{
+    float m = n * max(w, 0), ni = n;
+    if (m <= 1)
+        return mip[_patina_ctable_entry(n, x, wrap)];
+    while (ni > 1 && m >= 2) {
+        m /= 2;
+        ni /= 2;
+    }
+    float off = 2 * n - 2 * ni;
+    color lo = mip[off + _patina_ctable_entry(ni, x, wrap)];
+    if (ni <= 1)
+        return lo;
+    float t = clamp(log(m, 2), 0, 1);
+    color hi = mip[off + ni + _patina_ctable_entry(ni / 2, x, wrap)];
+    return lo + t * (hi - lo);
+}
 
 // Everything below depends on the table's length, so it is written once as a macro and made for
 // each size. (No `//` comments inside: the macro is one joined line.)

@@ -45,60 +45,14 @@ struct Analysis<'s> {
     index_origins: rustc_hash::FxHashSet<Span>,
     /// Stores to check once rates are final: (place root, value, control rate, control origin, store span).
     checks: Vec<(Target, ExprId, Rate, Option<Span>, Span)>,
-    /// How many statements store into each local (indexed stores and built-in outputs included).
-    stores: Vec<u32>,
-    /// Whether a local's declaration stores its initial value (a store whose span covers the
-    /// declared name).
-    initialised: Vec<bool>,
+    /// The locals whose only store is their declaration (`ir::stores`).
+    initialised_only: Vec<bool>,
 }
 
 #[derive(Copy, Clone)]
 enum Target {
     Local(LocalId),
     Global(&'static crate::sema::globals::Global),
-}
-
-/// Counts the statements that store into each local, and marks the locals whose declaration
-/// initialises them.
-fn count_stores(shader: &Shader, block: &Block, out: &mut [u32], initialised: &mut [bool]) {
-    for stmt in block {
-        match stmt {
-            Stmt::Store { place, span, .. } => {
-                if let Target::Local(l) = root(place) {
-                    out[l.0 as usize] += 1;
-                    let declared = shader.locals[l.0 as usize].span;
-                    if matches!(place, Place::Local(_))
-                        && span.file == declared.file
-                        && span.start <= declared.start
-                        && declared.end <= span.end
-                    {
-                        initialised[l.0 as usize] = true;
-                    }
-                }
-            }
-            Stmt::Eval(id) => {
-                if let crate::ir::ExprKind::Builtin(b, args) = &shader.expr(*id).kind {
-                    for (p, a) in b.params.iter().zip(args) {
-                        if let (true, crate::ir::ExprKind::Local(l)) = (p.output, &shader.expr(*a).kind) {
-                            out[l.0 as usize] += 1;
-                        }
-                    }
-                }
-            }
-            Stmt::If { then, otherwise, .. } => {
-                count_stores(shader, then, out, initialised);
-                count_stores(shader, otherwise, out, initialised);
-            }
-            Stmt::Loop { body, step, .. } => {
-                count_stores(shader, body, out, initialised);
-                count_stores(shader, step, out, initialised);
-            }
-            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
-                count_stores(shader, body, out, initialised)
-            }
-            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
-        }
-    }
 }
 
 fn root(place: &Place) -> Target {
@@ -117,12 +71,13 @@ pub fn infer(shader: &mut Shader, diags: &mut Diagnostics) {
         .iter()
         .map(|l| Origin { span: l.span, why: if l.declared { Why::Declared } else { Why::Constant } })
         .collect();
-    let mut stores = vec![0u32; shader.locals.len()];
-    let mut initialised = vec![false; shader.locals.len()];
-    count_stores(shader, &shader.body, &mut stores, &mut initialised);
+    let initialised_only = crate::ir::stores::stores(shader)
+        .iter()
+        .zip(&shader.locals)
+        .map(|(s, l)| s.only_initialiser(l.span).is_some())
+        .collect();
     let mut a = Analysis {
-        stores,
-        initialised,
+        initialised_only,
         origins: vec![constant; shader.exprs.len()],
         local_origins,
         shader,
@@ -394,8 +349,7 @@ impl Analysis<'_> {
                 let local = &self.shader.locals[l.0 as usize];
                 if local.declared
                     && local.rate.frequency == Frequency::Constant
-                    && self.stores[l.0 as usize] == 1
-                    && self.initialised[l.0 as usize]
+                    && self.initialised_only[l.0 as usize]
                     && value_rate.frequency == Frequency::Constant
                     && !value_rate.perlight
                 {

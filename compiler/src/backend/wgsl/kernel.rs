@@ -163,7 +163,11 @@ pub fn compile_kernel(
     for &param in &shader.params {
         let local = shader.local(param);
         let is_input = ins.iter().any(|(_, target)| matches!(target, Target::Local(l) if *l == param));
-        if let (crate::ir::LocalKind::Param { default: Some(default), .. }, false) = (&local.kind, is_input) {
+        // Strings and textures are resolved at compile time (`strings`, texture bindings).
+        let value_type = local.ty.base.components() > 0;
+        if let (crate::ir::LocalKind::Param { default: Some(default), .. }, false, true) =
+            (&local.kind, is_input, value_type)
+        {
             let value = t.expr(*default)?;
             let ptr = target_pointer(&mut t, shader, &Target::Local(param), local.ty);
             t.store(ptr, value);

@@ -9,70 +9,30 @@ use rustc_hash::FxHashMap;
 
 use super::module::ModuleBuilder;
 use crate::ir::types::{Base, Frequency, Type};
-use crate::ir::{Block, ExprId, ExprKind, Literal, LocalId, Place, Shader, Stmt};
+use crate::ir::{ExprId, ExprKind, Literal, LocalId, Shader};
 
 /// A table's element values, as naga literals (their bits identify the table).
 pub(crate) type Contents = Vec<NLit>;
 
 /// The locals of `shader` that are constant tables, with their contents.
 pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
-    let mut stores: FxHashMap<LocalId, (u32, Option<ExprId>)> = FxHashMap::default();
-    count(shader, &shader.body, &mut stores);
-    stores
-        .into_iter()
-        .filter_map(|(l, (n, value))| {
-            let local = shader.local(l);
+    crate::ir::stores::stores(shader)
+        .iter()
+        .zip(&shader.locals)
+        .enumerate()
+        .filter_map(|(i, (stores, local))| {
             let table = local.declared
                 && local.rate.frequency == Frequency::Constant
                 && !local.rate.perlight
                 && local.ty.array.is_some()
                 && matches!(local.ty.base, Base::Float | Base::Int | Base::Uint | Base::Bool);
-            if !table || n != 1 {
-                return None;
-            }
-            let ExprKind::Construct(parts) = &shader.expr(value?).kind else { return None };
+            let value = stores.only_initialiser(local.span).filter(|_| table)?;
+            let ExprKind::Construct(parts) = &shader.expr(value).kind else { return None };
             let contents: Option<Contents> =
                 parts.iter().map(|&p| literal(shader, p, local.ty.base)).collect();
-            contents.filter(|c| c.len() as u32 == local.ty.array.unwrap_or(0)).map(|c| (l, c))
+            contents.filter(|c| c.len() as u32 == local.ty.array.unwrap_or(0)).map(|c| (LocalId(i as u32), c))
         })
         .collect()
-}
-
-/// Counts the stores into each local (any store through an index counts, and so does a
-/// built-in's output); keeps the value of a whole-variable store.
-fn count(shader: &Shader, block: &Block, out: &mut FxHashMap<LocalId, (u32, Option<ExprId>)>) {
-    for stmt in block {
-        match stmt {
-            Stmt::Store { place, value, .. } => {
-                if let Some(l) = place.root_local() {
-                    let entry = out.entry(l).or_insert((0, None));
-                    entry.0 += 1;
-                    entry.1 = matches!(place, Place::Local(_)).then_some(*value);
-                }
-            }
-            Stmt::Eval(id) => {
-                if let ExprKind::Builtin(b, args) = &shader.expr(*id).kind {
-                    for (p, a) in b.params.iter().zip(args) {
-                        if let (true, ExprKind::Local(l)) = (p.output, &shader.expr(*a).kind) {
-                            out.entry(*l).or_insert((0, None)).0 += 2;
-                        }
-                    }
-                }
-            }
-            Stmt::If { then, otherwise, .. } => {
-                count(shader, then, out);
-                count(shader, otherwise, out);
-            }
-            Stmt::Loop { body, step, .. } => {
-                count(shader, body, out);
-                count(shader, step, out);
-            }
-            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
-                count(shader, body, out)
-            }
-            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
-        }
-    }
 }
 
 /// A literal element of type `base`, converted as the interpreter converts it.

@@ -1,0 +1,68 @@
+//! Which statements store into each local: for the analyses that treat a variable written once,
+//! by its declaration, as a value (constant tables in `sema::rates` and `backend::wgsl`).
+
+use super::{Block, ExprId, ExprKind, Place, Shader, Stmt};
+use crate::source::Span;
+
+/// What a shader's body stores into one local.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stores {
+    /// The statements that store into it: whole, through an index, or as a built-in's output.
+    pub count: u32,
+    /// The last store of the whole variable: its value and the store's span.
+    pub whole: Option<(ExprId, Span)>,
+}
+
+impl Stores {
+    /// The value of the only store, when that store is the variable's declaration (its span
+    /// covers the declared name `declared`).
+    pub fn only_initialiser(&self, declared: Span) -> Option<ExprId> {
+        let (value, span) = self.whole.filter(|_| self.count == 1)?;
+        (span.file == declared.file && span.start <= declared.start && declared.end <= span.end)
+            .then_some(value)
+    }
+}
+
+/// The stores into each local of `shader`, by local index.
+pub fn stores(shader: &Shader) -> Vec<Stores> {
+    let mut out = vec![Stores::default(); shader.locals.len()];
+    walk(shader, &shader.body, &mut out);
+    out
+}
+
+fn walk(shader: &Shader, block: &Block, out: &mut [Stores]) {
+    for stmt in block {
+        match stmt {
+            Stmt::Store { place, value, span } => {
+                if let Some(l) = place.root_local() {
+                    let entry = &mut out[l.0 as usize];
+                    entry.count += 1;
+                    if matches!(place, Place::Local(_)) {
+                        entry.whole = Some((*value, *span));
+                    }
+                }
+            }
+            Stmt::Eval(id) => {
+                if let ExprKind::Builtin(b, args) = &shader.expr(*id).kind {
+                    for (p, a) in b.params.iter().zip(args) {
+                        if let (true, ExprKind::Local(l)) = (p.output, &shader.expr(*a).kind) {
+                            out[l.0 as usize].count += 1;
+                        }
+                    }
+                }
+            }
+            Stmt::If { then, otherwise, .. } => {
+                walk(shader, then, out);
+                walk(shader, otherwise, out);
+            }
+            Stmt::Loop { body, step, .. } => {
+                walk(shader, body, out);
+                walk(shader, step, out);
+            }
+            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                walk(shader, body, out)
+            }
+            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+        }
+    }
+}

@@ -9,7 +9,7 @@ use rustc_hash::FxHashMap;
 
 use super::module::ModuleBuilder;
 use crate::ir::types::{Base, Frequency, Type};
-use crate::ir::{ExprId, ExprKind, Literal, LocalId, Shader};
+use crate::ir::{ExprId, ExprKind, Literal, LocalId, Shader, UnaryOp};
 
 /// A table's element values, as naga literals (their bits identify the table).
 pub(crate) type Contents = Vec<NLit>;
@@ -37,25 +37,37 @@ pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
 
 /// A literal element of type `base`, converted as the interpreter converts it.
 fn literal(shader: &Shader, id: ExprId, base: Base) -> Option<NLit> {
-    let e = shader.expr(id);
-    let value = match &e.kind {
-        ExprKind::Literal(l) => l.clone(),
-        ExprKind::Convert(inner) => match &shader.expr(*inner).kind {
-            ExprKind::Literal(l) => l.clone(),
-            _ => return None,
-        },
-        _ => return None,
-    };
-    Some(match (base, value) {
+    Some(match (base, value(shader, id)?) {
         (Base::Float, Literal::Float(x)) => NLit::F32(x as f32),
-        (Base::Float, Literal::Int(i)) => NLit::F32(i as f32),
-        (Base::Float, Literal::Uint(u)) => NLit::F32(u as f32),
         (Base::Int, Literal::Int(i)) => NLit::I32(i),
         (Base::Uint, Literal::Uint(u)) => NLit::U32(u),
-        (Base::Uint, Literal::Int(i)) if i >= 0 => NLit::U32(i as u32),
         (Base::Bool, Literal::Bool(b)) => NLit::Bool(b),
         _ => return None,
     })
+}
+
+/// The value of a literal, possibly negated or converted (`-0.25`, `{1, 2}` in a float table).
+/// Int to float is exact in f64 and then rounds once to f32, as the interpreter's conversion.
+fn value(shader: &Shader, id: ExprId) -> Option<Literal> {
+    let e = shader.expr(id);
+    match &e.kind {
+        ExprKind::Literal(l) => Some(l.clone()),
+        ExprKind::Unary(UnaryOp::Neg, a) => match value(shader, *a)? {
+            Literal::Float(x) => Some(Literal::Float(-x)),
+            Literal::Int(i) => Some(Literal::Int(i.wrapping_neg())),
+            _ => None,
+        },
+        ExprKind::Convert(a) => match (e.ty.base, value(shader, *a)?) {
+            (Base::Float, Literal::Float(x)) => Some(Literal::Float(x)),
+            (Base::Float, Literal::Int(i)) => Some(Literal::Float(f64::from(i))),
+            (Base::Float, Literal::Uint(u)) => Some(Literal::Float(f64::from(u))),
+            (Base::Int, Literal::Int(i)) => Some(Literal::Int(i)),
+            (Base::Uint, Literal::Uint(u)) => Some(Literal::Uint(u)),
+            (Base::Uint, Literal::Int(i)) if i >= 0 => Some(Literal::Uint(i as u32)),
+            _ => None,
+        },
+        _ => None,
+    }
 }
 
 impl ModuleBuilder {

@@ -3,6 +3,11 @@
 //! initializer, shared by every inlined copy with the same contents, instead of a composite store
 //! at each call. The stdlib's noises declare their tables inside the functions, so a shader with
 //! many noise calls would otherwise build the same 256-entry array for every call.
+//!
+//! Only integer and boolean tables: with float tables whose values the driver can see, lavapipe's
+//! LLVM folds the arithmetic on them differently from the interpreter (1 ulp in a spline over
+//! constant knots, found by runtime/tests/stdlib_shaping_gpu.rs), and the backends promise the
+//! same bits. Integer operations are exact whatever is folded.
 
 use naga::{Expression, Handle, Literal as NLit, Span};
 use rustc_hash::FxHashMap;
@@ -25,7 +30,7 @@ pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
                 && local.rate.frequency == Frequency::Constant
                 && !local.rate.perlight
                 && local.ty.array.is_some()
-                && matches!(local.ty.base, Base::Float | Base::Int | Base::Uint | Base::Bool);
+                && matches!(local.ty.base, Base::Int | Base::Uint | Base::Bool);
             let value = stores.only_initialiser(local.span).filter(|_| table)?;
             let ExprKind::Construct(parts) = &shader.expr(value).kind else { return None };
             let contents: Option<Contents> =

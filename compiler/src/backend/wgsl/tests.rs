@@ -100,8 +100,8 @@ fn kernels_validate_and_lay_out_their_records() {
 }
 
 #[test]
-fn a_constant_table_is_one_initialized_variable_shared_by_its_calls() {
-    let src = "float pick(float i) { constant float table[4] = {0.5, -0.25, 2, -3}; return table[int(i)]; }\n\
+fn a_constant_integer_table_is_one_initialized_variable_shared_by_its_calls() {
+    let src = "float pick(float i) { constant int table[4] = {5, -25, 2, -3}; return table[int(i)]; }\n\
                surface t() { Ci = color(pick(s), pick(t), pick(s + t)); }";
     let p = program(src, None);
     let module = &p.module;
@@ -111,14 +111,14 @@ fn a_constant_table_is_one_initialized_variable_shared_by_its_calls() {
     let naga::Expression::Compose { components, .. } = &module.global_expressions[g.init.unwrap()] else {
         panic!("a composite initializer");
     };
-    let values: Vec<f32> = components
+    let values: Vec<i32> = components
         .iter()
         .map(|&c| match module.global_expressions[c] {
-            naga::Expression::Literal(naga::Literal::F32(x)) => x,
+            naga::Expression::Literal(naga::Literal::I32(x)) => x,
             ref other => panic!("{other:?}"),
         })
         .collect();
-    assert_eq!(values, [0.5, -0.25, 2.0, -3.0]);
+    assert_eq!(values, [5, -25, 2, -3]);
     let wgsl = p.wgsl().unwrap();
     assert!(!wgsl.contains("table = array"), "no store of the table:\n{wgsl}");
     naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{}\n{wgsl}", e.emit_to_string(&wgsl)));

@@ -13,24 +13,11 @@ use support::{Rng, assert_finite, extremes, worst};
 
 /// The definitions, in f64, written from the sources and the documented decisions.
 mod port {
-    pub const PERM: [i32; 256] = [
-        151, 160, 137, 91, 90, 15, 131, 13, 201, 95, 96, 53, 194, 233, 7, 225, 140, 36, 103, 30, 69, 142, 8,
-        99, 37, 240, 21, 10, 23, 190, 6, 148, 247, 120, 234, 75, 0, 26, 197, 62, 94, 252, 219, 203, 117, 35,
-        11, 32, 57, 177, 33, 88, 237, 149, 56, 87, 174, 20, 125, 136, 171, 168, 68, 175, 74, 165, 71, 134,
-        139, 48, 27, 166, 77, 146, 158, 231, 83, 111, 229, 122, 60, 211, 133, 230, 220, 105, 92, 41, 55, 46,
-        245, 40, 244, 102, 143, 54, 65, 25, 63, 161, 1, 216, 80, 73, 209, 76, 132, 187, 208, 89, 18, 169,
-        200, 196, 135, 130, 116, 188, 159, 86, 164, 100, 109, 198, 173, 186, 3, 64, 52, 217, 226, 250, 124,
-        123, 5, 202, 38, 147, 118, 126, 255, 82, 85, 212, 207, 206, 59, 227, 47, 16, 58, 17, 182, 189, 28,
-        42, 223, 183, 170, 213, 119, 248, 152, 2, 44, 154, 163, 70, 221, 153, 101, 155, 167, 43, 172, 9, 129,
-        22, 39, 253, 19, 98, 108, 110, 79, 113, 224, 232, 178, 185, 112, 104, 218, 246, 97, 228, 251, 34,
-        242, 193, 238, 210, 144, 12, 191, 179, 162, 241, 81, 51, 145, 235, 249, 14, 239, 107, 49, 192, 214,
-        31, 181, 199, 106, 157, 184, 84, 204, 176, 115, 121, 50, 45, 127, 4, 150, 254, 138, 236, 205, 93,
-        222, 114, 67, 29, 24, 72, 243, 141, 128, 195, 78, 66, 215, 61, 156, 180,
-    ];
+    pub const PERM: [i32; 256] = super::support::PERLIN_PERMUTATION;
     pub const SCALE3: f64 = 0.9649;
     pub const SCALE1: f64 = 0.25;
     pub const SCALE4: f64 = 0.74;
-    pub const TAU: f64 = 6.283185307179586;
+    pub const TAU: f64 = std::f64::consts::TAU;
 
     pub fn p(i: i32) -> i32 {
         PERM[(i & 255) as usize]
@@ -458,8 +445,11 @@ const UNSIGNED: [(&str, &str, &str); 8] = [
     ("pnoise4", "pnoise4(P, w, per, pw)", "psnoise4(P, w, per, pw)"),
 ];
 
+/// A backend running the family's shader at argument sets.
+type Runner<'a> = &'a dyn Fn(&support::Program, &[In]) -> Vec<[f64; 6]>;
+
 /// Runs the whole family at `ins` on one backend: one column of values per family member.
-fn run_family(backend: &dyn Fn(&support::Program, &[In]) -> Vec<[f64; 6]>, ins: &[In]) -> Vec<Vec<f64>> {
+fn run_family(backend: Runner, ins: &[In]) -> Vec<Vec<f64>> {
     let fam = family();
     let mut columns = Vec::new();
     for chunk in fam.chunks(6) {
@@ -831,7 +821,7 @@ fn flownoise3_turns_snoise3() {
     // Periodic in the angle: a + 2 pi k against a.
     let mut ins = Vec::new();
     for x in &base {
-        let a = rng.range(0.0, 6.28);
+        let a = rng.range(0.0, std::f64::consts::TAU);
         for k in [0.0, 1.0, -1.0, 5.0, -40.0, 1000.0] {
             ins.push(In { a: a + k * port::TAU, ..*x });
         }
@@ -847,7 +837,7 @@ fn flownoise3_turns_snoise3() {
         assert!(worst <= tol, "{worst:e}");
     }
     // It moves: a quarter turn changes the values (decorrelates them from snoise3).
-    let quarter: Vec<In> = base.iter().map(|x| In { a: 1.5707963267948966, ..*x }).collect();
+    let quarter: Vec<In> = base.iter().map(|x| In { a: std::f64::consts::FRAC_PI_2, ..*x }).collect();
     let out = run(&prog, Backend::F64, &quarter);
     let a: Vec<f64> = out.iter().map(|o| o[0]).collect();
     let b: Vec<f64> = out.iter().map(|o| o[1]).collect();
@@ -903,9 +893,7 @@ fn periodicity_is_exact() {
                     continue;
                 }
                 compared += 1;
-                for k in 0..4 {
-                    assert_eq!(out[i][k], out[start][k], "function {k}, period {per}, at {:?}", ins[i]);
-                }
+                assert_eq!(out[i][..4], out[start][..4], "period {per}, at {:?}", ins[i]);
             }
         }
         println!(
@@ -928,7 +916,7 @@ fn extreme_points() -> Vec<In> {
     for &x in &e {
         for &y in &e {
             for &z in &e {
-                if rng.next() % 3 != 0 {
+                if !rng.next().is_multiple_of(3) {
                     continue;
                 }
                 let pick = |r: &mut Rng| e[(r.next() % e.len() as u64) as usize];

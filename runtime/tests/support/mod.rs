@@ -6,7 +6,7 @@
 #![allow(dead_code)]
 
 use patina_compiler::backend::cpu::scalar::Real;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::preprocess::MemoryLoader;
@@ -45,10 +45,25 @@ impl Program {
     /// inputs (rounded to f32) and outputs as [`Program::cpu`]. Every input named must be a float
     /// type (the kernel reads words as f32 bits).
     pub fn gpu(&self, gpu: &Gpu, count: usize, inputs: &Columns, outputs: &[&str]) -> Vec<Vec<f64>> {
-        let mut diff = self.shader.clone();
+        gpu_kernel(gpu, &self.shader, &[], count, inputs, outputs)
+    }
+}
+
+/// Runs `shader` on the GPU as a compute kernel with `lights` bound (their values are inputs
+/// `L[k]`, `Cl[k]`, as for the interpreter), one invocation per point; as [`Program::gpu`].
+pub fn gpu_kernel(
+    gpu: &Gpu,
+    shader: &Shader,
+    lights: &[LightBinding],
+    count: usize,
+    inputs: &Columns,
+    outputs: &[&str],
+) -> Vec<Vec<f64>> {
+    {
+        let mut diff = shader.clone();
         patina_compiler::opt::derivs::differentiate(&mut diff);
         let names: Vec<&str> = inputs.iter().map(|(n, _)| *n).collect();
-        let kernel = compile_kernel(&diff, &[], &[], &names, outputs)
+        let kernel = compile_kernel(&diff, lights, &[], &names, outputs)
             .unwrap_or_else(|d| panic!("the WGSL backend: {}: {}", d.code, d.message));
         let stride = kernel.input_stride as usize;
         let mut words = vec![0u32; count * stride];
@@ -87,6 +102,23 @@ impl Program {
             .collect()
     }
 }
+
+/// Perlin's permutation of 0..255, as published in his ImprovedNoise.java (2002): the table the
+/// tests' independent ports of improved noise use.
+pub const PERLIN_PERMUTATION: [i32; 256] = [
+    151, 160, 137, 91, 90, 15, 131, 13, 201, 95, 96, 53, 194, 233, 7, 225, 140, 36, 103, 30, 69, 142, 8, 99,
+    37, 240, 21, 10, 23, 190, 6, 148, 247, 120, 234, 75, 0, 26, 197, 62, 94, 252, 219, 203, 117, 35, 11, 32,
+    57, 177, 33, 88, 237, 149, 56, 87, 174, 20, 125, 136, 171, 168, 68, 175, 74, 165, 71, 134, 139, 48, 27,
+    166, 77, 146, 158, 231, 83, 111, 229, 122, 60, 211, 133, 230, 220, 105, 92, 41, 55, 46, 245, 40, 244,
+    102, 143, 54, 65, 25, 63, 161, 1, 216, 80, 73, 209, 76, 132, 187, 208, 89, 18, 169, 200, 196, 135, 130,
+    116, 188, 159, 86, 164, 100, 109, 198, 173, 186, 3, 64, 52, 217, 226, 250, 124, 123, 5, 202, 38, 147,
+    118, 126, 255, 82, 85, 212, 207, 206, 59, 227, 47, 16, 58, 17, 182, 189, 28, 42, 223, 183, 170, 213, 119,
+    248, 152, 2, 44, 154, 163, 70, 221, 153, 101, 155, 167, 43, 172, 9, 129, 22, 39, 253, 19, 98, 108, 110,
+    79, 113, 224, 232, 178, 185, 112, 104, 218, 246, 97, 228, 251, 34, 242, 193, 238, 210, 144, 12, 191, 179,
+    162, 241, 81, 51, 145, 235, 249, 14, 239, 107, 49, 192, 214, 31, 181, 199, 106, 157, 184, 84, 204, 176,
+    115, 121, 50, 45, 127, 4, 150, 254, 138, 236, 205, 93, 222, 114, 67, 29, 24, 72, 243, 141, 128, 195, 78,
+    66, 215, 61, 156, 180,
+];
 
 /// splitmix64: deterministic pseudo-random numbers for sample points.
 pub struct Rng(pub u64);

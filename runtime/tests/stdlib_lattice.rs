@@ -11,24 +11,7 @@ use support::{Rng, assert_finite, extremes, worst};
 
 /// The definitions, in f64, written from the sources (not from lattice.sl).
 mod port {
-    pub fn pcg(v: u32) -> u32 {
-        let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
-        let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
-        (word >> 22) ^ word
-    }
-
-    /// The lattice coordinate of an integer-valued float: the integer modulo 2^32, as i32.
-    pub fn cell(c: f64) -> i32 {
-        if c.abs() < 2_147_483_648.0 { c as i32 } else { c.rem_euclid(4_294_967_296.0) as u64 as u32 as i32 }
-    }
-
-    pub fn hash(coords: &[i32], seed: i32) -> u32 {
-        coords.iter().rev().fold(pcg(seed as u32), |h, &c| pcg((c as u32).wrapping_add(h)))
-    }
-
-    pub fn unit(h: u32) -> f64 {
-        f64::from(h >> 8) / 16_777_216.0
-    }
+    pub use super::support::lattice_hash::{cell, hash, pcg, unit};
 
     pub fn signed(h: u32) -> f64 {
         (2.0 * f64::from(h >> 9) + 1.0) / 8_388_608.0 - 1.0

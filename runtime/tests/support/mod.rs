@@ -120,6 +120,32 @@ pub const PERLIN_PERMUTATION: [i32; 256] = [
     66, 215, 61, 156, 180,
 ];
 
+/// The lattice hash of `stdlib/lattice.sl`, ported from its definition (PCG's output permutation,
+/// nested over the coordinates): for the tests of the lattice and cellular noises.
+pub mod lattice_hash {
+    /// PCG's output permutation of one 32-bit state.
+    pub fn pcg(v: u32) -> u32 {
+        let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+        let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+        (word >> 22) ^ word
+    }
+
+    /// The lattice coordinate of an integer-valued float: the integer modulo 2^32, as i32.
+    pub fn cell(c: f64) -> i32 {
+        if c.abs() < 2_147_483_648.0 { c as i32 } else { c.rem_euclid(4_294_967_296.0) as u64 as u32 as i32 }
+    }
+
+    /// The hash of lattice coordinates and a seed.
+    pub fn hash(coords: &[i32], seed: i32) -> u32 {
+        coords.iter().rev().fold(pcg(seed as u32), |h, &c| pcg((c as u32).wrapping_add(h)))
+    }
+
+    /// A hash's top 24 bits as a float in [0, 1).
+    pub fn unit(h: u32) -> f64 {
+        f64::from(h >> 8) / 16_777_216.0
+    }
+}
+
 /// splitmix64: deterministic pseudo-random numbers for sample points.
 pub struct Rng(pub u64);
 

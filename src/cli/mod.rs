@@ -4,6 +4,8 @@ mod check;
 mod compile;
 mod eval;
 mod explain;
+mod gallery;
+mod progress;
 mod render;
 
 use std::path::PathBuf;
@@ -31,6 +33,23 @@ enum Command {
     Compile(CompileArgs),
     /// Render a scene to a PNG, on the GPU (the CPU reference when there is none, or when asked).
     Render(RenderArgs),
+    /// Render scenes on the GPU and the CPU reference, compare them, and write their pictures and
+    /// a Markdown page with their timings.
+    Gallery(GalleryArgs),
+}
+
+/// Arguments of `patina gallery`.
+#[derive(clap::Args, Debug)]
+pub struct GalleryArgs {
+    /// The scene files (TOML).
+    #[arg(required = true)]
+    scenes: Vec<PathBuf>,
+    /// Where to write each scene's picture, as NAME.png (the GPU's when there is a GPU).
+    #[arg(long, value_name = "DIR", default_value = "gallery")]
+    images: PathBuf,
+    /// A Markdown page to write, showing every picture with its command and timings.
+    #[arg(long, value_name = "FILE")]
+    markdown: Option<PathBuf>,
 }
 
 /// Arguments of `patina compile`.
@@ -167,5 +186,6 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Eval(args) => eval::run(args),
         Command::Compile(args) => compile::run(args),
         Command::Render(args) => render::run(args),
+        Command::Gallery(args) => gallery::run(args),
     }
 }

@@ -8,6 +8,7 @@ use patina_runtime::gpu::{self, Gpu};
 use patina_runtime::render::{self, Backend};
 use patina_runtime::scene::Scene;
 
+use super::progress::{RenderBar, with_bars};
 use super::{BackendChoice, RenderArgs};
 
 pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
@@ -17,20 +18,17 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
     let compiled = started.elapsed();
     let (backend, gpu) = match args.backend {
         BackendChoice::Cpu => (Backend::Cpu, None),
-        BackendChoice::Gpu if !gpu::adapter_required() => {
-            eprintln!("note: {}=off: rendering on the CPU", gpu::GPU_ENV);
-            (Backend::Cpu, None)
-        }
-        BackendChoice::Gpu => match Gpu::new() {
-            Ok(gpu) => (Backend::Gpu, Some(gpu)),
-            Err(e) => {
-                eprintln!("note: no GPU ({e}); rendering on the CPU");
-                (Backend::Cpu, None)
-            }
+        BackendChoice::Gpu => match open_gpu() {
+            Some(gpu) => (Backend::Gpu, Some(gpu)),
+            None => (Backend::Cpu, None),
         },
     };
     let started = Instant::now();
-    let image = render::render(&prepared, backend, gpu.as_ref()).map_err(|e| e.to_string())?;
+    let image = with_bars(|bars| {
+        let bar = RenderBar::new(bars, "rendering");
+        render::render_with_progress(&prepared, backend, gpu.as_ref(), &bar)
+    })
+    .map_err(|e| e.to_string())?;
     let drawn = started.elapsed();
     image.write_png(&args.output).map_err(|e| e.to_string())?;
     let device = match &gpu {
@@ -46,4 +44,20 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
         drawn.as_secs_f64() * 1e3
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// The GPU, or `None` (saying why on stderr) when there is none or `PATINA_GPU=off`: the caller
+/// falls back to the CPU reference.
+pub fn open_gpu() -> Option<Gpu> {
+    if !gpu::adapter_required() {
+        eprintln!("note: {}=off: rendering on the CPU", gpu::GPU_ENV);
+        return None;
+    }
+    match Gpu::new() {
+        Ok(gpu) => Some(gpu),
+        Err(e) => {
+            eprintln!("note: no GPU ({e}); rendering on the CPU");
+            None
+        }
+    }
 }

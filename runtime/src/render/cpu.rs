@@ -9,17 +9,61 @@ use patina_compiler::split::StageKind;
 
 use super::frame::{Frame, VertexGeometry, uniform_value};
 use super::program::{SurfaceProgram, set_spaces};
-use super::{Object, Prepared, RenderError};
+use super::{Object, Prepared, Progress, RenderError, Unit};
 use crate::image::Image;
 use crate::raster::{Blend, DrawOptions, Fragments, Framebuffer, Varyings, draw};
 
-/// Renders every object on the CPU into an image of `width × height`.
-pub fn render(prepared: &Prepared, width: u32, height: u32) -> Result<Image, RenderError> {
+/// Renders every object on the CPU into an image of `width × height`, telling `progress` how many
+/// fragments there are to shade and how many are done.
+pub fn render(
+    prepared: &Prepared,
+    width: u32,
+    height: u32,
+    progress: &dyn Progress,
+) -> Result<Image, RenderError> {
+    let shaded_vertices: Vec<Vertices> =
+        prepared.objects.iter().map(|o| vertex_stage(prepared, o)).collect::<Result<_, _>>()?;
+    // A dry run of the rasterizer, with the same depth tests in the same order, counts exactly the
+    // fragments the fragment stage will shade; it costs little next to shading them.
+    let mut dry = Framebuffer::new(width, height, prepared.background);
+    let mut total = 0;
+    for v in &shaded_vertices {
+        let stats = draw(&mut dry, &v.clip, v.indices, &v.varyings(), &DRAW, |_, _| Ok::<_, RenderError>(()))
+            .map_err(|e| RenderError::Compile(e.to_string()))?;
+        total += stats.fragments as u64;
+    }
+    progress.start(total, Unit::Fragments);
     let mut fb = Framebuffer::new(width, height, prepared.background);
-    for object in &prepared.objects {
-        draw_object(&mut fb, prepared, object)?;
+    for (object, vertices) in prepared.objects.iter().zip(&shaded_vertices) {
+        fragment_stage(&mut fb, prepared, object, vertices, progress)?;
     }
     Ok(Image { width, height, pixels: fb.color })
+}
+
+/// How every object is drawn: blended over what is there, with depth writes, in batches of 128
+/// fragments (the interpreter's lane count).
+const DRAW: DrawOptions = DrawOptions { blend: Blend::PremultipliedOver, depth_write: true, batch: 128 };
+
+/// One object after its vertex stage: what the rasterizer needs to draw it.
+struct Vertices<'a> {
+    /// Where each varying comes from, its first component, its width and whether it is flat.
+    carried: Vec<(Carried, usize, usize, bool)>,
+    /// Components per vertex.
+    components: usize,
+    /// `components` values per vertex.
+    data: Vec<f32>,
+    /// Per component: not interpolated.
+    flat: Vec<bool>,
+    /// Clip-space positions.
+    clip: Vec<[f32; 4]>,
+    /// The mesh's triangles.
+    indices: &'a [u32],
+}
+
+impl Vertices<'_> {
+    fn varyings(&self) -> Varyings<'_> {
+        Varyings { components: self.components, data: &self.data, flat: &self.flat }
+    }
 }
 
 /// A varying's source, as the WGSL backend's entry point names it.
@@ -29,7 +73,8 @@ enum Carried {
     Transfer(String),
 }
 
-fn draw_object(fb: &mut Framebuffer, prepared: &Prepared, object: &Object) -> Result<(), RenderError> {
+/// Runs the vertex stage of `object` at every vertex and lays out the varyings.
+fn vertex_stage<'a>(prepared: &Prepared, object: &'a Object) -> Result<Vertices<'a>, RenderError> {
     let surface = &object.surface;
     let frame = &object.frame;
     let stanford = surface.stages.fragment.stanford;
@@ -121,7 +166,20 @@ fn draw_object(fb: &mut Framebuffer, prepared: &Prepared, object: &Object) -> Re
         .iter()
         .map(|g: &VertexGeometry| (frame.camera_to_clip * g.p.extend(1.0)).to_array())
         .collect();
+    Ok(Vertices { carried, components, data, flat, clip, indices: &object.mesh.indices })
+}
 
+/// Rasterizes `object` into `fb` and runs its fragment stage (with the lights' programs) over the
+/// fragments, in batches.
+fn fragment_stage(
+    fb: &mut Framebuffer,
+    prepared: &Prepared,
+    object: &Object,
+    vertices: &Vertices,
+    progress: &dyn Progress,
+) -> Result<(), RenderError> {
+    let surface = &object.surface;
+    let frame = &object.frame;
     // The fragment stage.
     let mut fragment = Evaluator::<f32>::new(&surface.fragment);
     bind_textures(&mut fragment, &surface.fragment, object);
@@ -138,13 +196,14 @@ fn draw_object(fb: &mut Framebuffer, prepared: &Prepared, object: &Object) -> Re
             e
         })
         .collect();
-    let output = interface.output.clone();
-    let varyings = Varyings { components, data: &data, flat: &flat };
-    let options = DrawOptions { blend: Blend::PremultipliedOver, depth_write: true, batch: 128 };
+    let output = surface.gpu.interface.output.clone();
+    let carried = &vertices.carried;
     let shade = |frags: &Fragments, colors: &mut [[f32; 4]]| -> Result<(), RenderError> {
-        shade_batch(frags, colors, &carried, &mut fragment, &mut lights, prepared, surface, frame, &output)
+        shade_batch(frags, colors, carried, &mut fragment, &mut lights, prepared, surface, frame, &output)?;
+        progress.advance(frags.count as u64);
+        Ok(())
     };
-    draw(fb, &clip, &object.mesh.indices, &varyings, &options, shade).map_err(|e| match e {
+    draw(fb, &vertices.clip, vertices.indices, &vertices.varyings(), &DRAW, shade).map_err(|e| match e {
         crate::raster::DrawError::Shade(e) => e,
         other => RenderError::Compile(other.to_string()),
     })?;

@@ -6,6 +6,7 @@ mod cpu;
 mod frame;
 mod gpu;
 mod program;
+mod progress;
 mod textures;
 
 use glam::Mat4;
@@ -17,6 +18,7 @@ use crate::mesh::Mesh;
 use crate::scene::Scene;
 pub use frame::Frame;
 pub use program::{LightProgram, SurfaceProgram};
+pub use progress::{Progress, Silent, Unit};
 
 /// Why a scene could not be rendered, as one line (or a shader's diagnostics).
 #[derive(Clone, Debug, PartialEq)]
@@ -158,10 +160,25 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
 /// Renders a prepared scene on a backend (the GPU one needs `gpu`), downsampled to the scene's
 /// output size.
 pub fn render(prepared: &Prepared, backend: Backend, gpu: Option<&Gpu>) -> Result<Image, RenderError> {
+    render_with_progress(prepared, backend, gpu, &Silent)
+}
+
+/// As [`render`], telling `progress` how far it has got.
+pub fn render_with_progress(
+    prepared: &Prepared,
+    backend: Backend,
+    gpu: Option<&Gpu>,
+    progress: &dyn Progress,
+) -> Result<Image, RenderError> {
     let image = match (backend, gpu) {
-        (Backend::Gpu, Some(gpu)) => gpu::render(gpu, prepared, prepared.width, prepared.height)?,
+        (Backend::Gpu, Some(gpu)) => {
+            progress.start(1, Unit::Draws);
+            let image = gpu::render(gpu, prepared, prepared.width, prepared.height)?;
+            progress.advance(1);
+            image
+        }
         (Backend::Gpu, None) => return Err(RenderError::Gpu("no GPU adapter".into())),
-        (Backend::Cpu, _) => cpu::render(prepared, prepared.width, prepared.height)?,
+        (Backend::Cpu, _) => cpu::render(prepared, prepared.width, prepared.height, progress)?,
     };
     Ok(downsample(&image, prepared.supersample))
 }

@@ -5,6 +5,8 @@
 //! Use it from a test file with `mod support;`. Each test file uses only part of it.
 #![allow(dead_code)]
 
+pub mod gallery;
+
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};

@@ -237,3 +237,42 @@ fn compile_writes_wgsl_that_reparses_and_an_interface() {
     assert!(names.contains(&"l0_intensity") && names.contains(&"camera_to_clip"), "{names:?}");
     assert_eq!(json["attributes"][0]["name"], "P");
 }
+
+#[test]
+fn gallery_renders_compares_and_writes_a_page() {
+    let dir = scratch("gallery.md", b"").parent().unwrap().join("gallery");
+    let images = dir.join("img");
+    let page = dir.join("page.md");
+    let broken = scratch(
+        "broken.toml",
+        b"# Names a shader that is not there.\n[camera]\nfrom = [0, 0, -3]\nto = [0, 0, 0]\n\
+          [[object]]\nmesh = \"sphere\"\nshader = \"missing.sl\"\n",
+    );
+    let out = patina(&[
+        "gallery",
+        &scene("flame.toml"),
+        broken.to_str().unwrap(),
+        "--images",
+        images.to_str().unwrap(),
+        "--markdown",
+        page.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // The broken scene fails the run, after the others were rendered and the page written.
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    let gpu = patina_runtime::gpu::adapter_required();
+    let expected = if gpu { "flame: compile" } else { "rendering on the CPU" };
+    assert!(stderr.contains(expected), "{stderr}");
+    if gpu {
+        assert!(stderr.contains("ms: agree (max"), "the GPU and CPU images must agree: {stderr}");
+    }
+    assert!(stderr.contains("broken: ") && stderr.contains("missing.sl"), "{stderr}");
+    let md = std::fs::read_to_string(&page).expect("the page is written");
+    assert!(md.contains("| [flame](#flame) | 160×240 |"), "{md}");
+    assert!(md.contains("![flame](img/flame.png)"), "{md}");
+    assert!(md.contains("The Stanford-style procedural flame"), "the caption is the scene's comment: {md}");
+    assert!(md.contains("| broken | failed: "), "{md}");
+    assert!(!md.contains("![broken]"), "{md}");
+    let (size, _) = png_pixel(&images.join("flame.png"), 0, 0);
+    assert_eq!(size, (160, 240));
+}

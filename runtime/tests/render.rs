@@ -88,3 +88,36 @@ fn displacement_agrees() {
     let t = Thresholds { hard_fail: 0.05, ..Thresholds::default() };
     both_within("ripples", 96, 72, t);
 }
+
+/// Counts what a render reports.
+#[derive(Default)]
+struct Counted {
+    starts: std::sync::Mutex<Vec<(u64, render::Unit)>>,
+    done: std::sync::atomic::AtomicU64,
+}
+
+impl render::Progress for Counted {
+    fn start(&self, total: u64, unit: render::Unit) {
+        self.starts.lock().unwrap().push((total, unit));
+    }
+    fn advance(&self, done: u64) {
+        self.done.fetch_add(done, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+#[test]
+fn the_cpu_renderer_reports_exactly_the_fragments_it_shades() {
+    // The total comes from a dry run of the rasterizer before shading; the batches shaded must add
+    // up to it exactly, and every covered pixel was shaded at least once.
+    let s = scene("textured", 64, 48);
+    let prepared = render::prepare(&s).unwrap();
+    let progress = Counted::default();
+    let image = render::render_with_progress(&prepared, Backend::Cpu, None, &progress).unwrap();
+    let starts = progress.starts.lock().unwrap().clone();
+    assert_eq!(starts.len(), 1, "{starts:?}");
+    let (total, unit) = starts[0];
+    assert_eq!(unit, render::Unit::Fragments);
+    assert_eq!(progress.done.load(std::sync::atomic::Ordering::Relaxed), total);
+    let covered_pixels = (covered(&image, [0.1, 0.1, 0.12, 1.0]) * f64::from(64 * 48)).round() as u64;
+    assert!(total >= covered_pixels && covered_pixels > 0, "{total} fragments, {covered_pixels} covered");
+}

@@ -1,10 +1,14 @@
-// The teacup of the steam_cup scene: a glazed ceramic (RenderMan's plastic with a faint rim
-// darkening toward grazing angles) for the cup's wall, saucer and handle, and the tea, a disk of
-// radius `radius` in the unit plane's (s, t) square (transparent outside it) with a dark, glossy
-// surface.
+// The teacup of the steam_cup scene: a glazed ceramic (RenderMan's plastic) for the cup's wall,
+// saucer and handle, and the tea, a disk of radius `radius` in the unit plane's (s, t) square
+// (transparent outside it) with a dark, glossy surface.
+
+// The ceramic is drawn on closed meshes (sphere, torus), whose visible faces face the eye, so the
+// normal is not flipped toward the eye: faceforward flips where N . I changes sign, on the
+// silhouettes, and there the two backends' roundings of N . I would choose different sides (whole
+// pixels lit on one backend and in shadow on the other).
 surface ceramic(float Ka = 1, Kd = 0.75, Ks = 0.6, roughness = 0.06)
 {
-    normal Nf = faceforward(normalize(N), I);
+    normal Nf = normalize(N);
     vector V = -normalize(I);
     Oi = Os;
     Ci = Os * (Cs * (Ka * ambient() + Kd * diffuse(Nf)) + Ks * specular(Nf, V, roughness));

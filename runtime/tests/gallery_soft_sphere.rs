@@ -303,3 +303,178 @@ fn soft_sphere_union_renders_on_both_backends() {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The fire ball (seed-digest §12 S4)
+
+/// The fire ball's probe: its density and colour map, pointwise. The density parameters are the
+/// shader's defaults (frequency 3, amplitude 1.5).
+fn fireball_probe() -> support::Program {
+    let source = format!(
+        "{}\nsurface fireball_probe(varying point q = 0; varying float octaves = 5; varying float dens = 0;\n\
+         output varying float density = 0; output varying color mapped = 0)\n\
+         {{ density = fireball_density(q, 3, 1.5, octaves); mapped = fireball_color(dens); }}\n",
+        shader_source("fireball")
+    );
+    program_named(&source, "fireball_probe")
+}
+
+/// The colour map's ends, c(0) and c(1), as the shader writes them.
+const FIRE_RED: [f64; 3] = [0.8, 0.04, 0.01];
+const FIRE_YELLOW: [f64; 3] = [1.0, 0.9, 0.36];
+
+#[test]
+fn fireball_both_backends_agree() {
+    let mut s = scene("fireball", 64, 64);
+    assert_eq!(s.output.background, [0.0, 0.0, 0.0, 1.0]);
+    set(&mut s, &[0], "steps", 24.0);
+    set(&mut s, &[0], "octaves", 4.0);
+    // On a transparent background the image's alpha is the march's opacity Oi (the scene's own
+    // background is opaque black, which only sets alpha to 1).
+    s.output.background = [0.0; 4];
+    let Some(r) = both("fireball", &s, Thresholds::default()) else { return };
+    println!("fireball 64x64, 24 steps, 4 octaves: GPU vs CPU {:?}", r.comparison);
+    // The flames fill part of the disc of radius 0.5 in the unit square (pi / 4 of the pixels at
+    // most); the corners stay empty.
+    let c = covered(&r.cpu, [0.0; 4]);
+    println!("fireball: covered fraction {c:.3}");
+    assert!(c > 0.3 && c < 0.785, "covered fraction {c}");
+    assert_eq!(at(&r.cpu, 0, 0), [0.0; 4]);
+    // Each pixel's premultiplied colour is sum_k w_k c(D_k) with weights w_k >= 0 summing to its
+    // opacity, and every channel of the map c is non-decreasing in the density, so the colour
+    // divided by the opacity lies between c(0) (red) and c(1) (yellow) channel by channel.
+    for (name, image) in [("CPU", &r.cpu), ("GPU", &r.gpu)] {
+        let (mut yellow, mut red) = (0, 0);
+        for y in 0..64 {
+            for x in 0..64 {
+                let p = at(image, x, y);
+                let a = f64::from(p[3]);
+                assert!((0.0..=1.0).contains(&a), "{name}: pixel ({x}, {y}) opacity {a}");
+                if a < 1e-3 {
+                    continue;
+                }
+                for k in 0..3 {
+                    let v = f64::from(p[k]) / a;
+                    assert!(
+                        v >= FIRE_RED[k] - 1e-4 && v <= FIRE_YELLOW[k] + 1e-4,
+                        "{name}: pixel ({x}, {y}) channel {k}: {v} outside the map's range"
+                    );
+                }
+                let g = f64::from(p[1]) / a;
+                yellow += usize::from(a > 0.9 && g > 0.5);
+                red += usize::from(g < 0.25);
+            }
+        }
+        println!("fireball {name}: {yellow} opaque yellow pixels, {red} red ones");
+        assert!(yellow > 50 && red > 50, "{name}: {yellow} yellow and {red} red pixels");
+    }
+}
+
+#[test]
+fn fireball_density_stays_in_the_unit_interval_along_the_march() {
+    // The density at the sample points of the scene's own march (a 24 x 24 grid of rays through
+    // the unit square, 32 midpoint steps over each ray's chord of the outer sphere, radius 0.5),
+    // at 1, 2.5 and 5 octaves, on the interpreter in f64 and f32 and on the GPU.
+    let program = fireball_probe();
+    let (mut q, mut oct) = (vec![], vec![]);
+    for octaves in [1.0, 2.5, 5.0] {
+        for j in 0..24 {
+            for i in 0..24 {
+                let x = (f64::from(i) + 0.5) / 24.0 - 0.5;
+                let y = 0.5 - (f64::from(j) + 0.5) / 24.0;
+                let b2 = x * x + y * y;
+                if b2 >= 0.25 {
+                    continue;
+                }
+                let half = (0.25 - b2).sqrt();
+                for k in 0..32 {
+                    let z = -half + (f64::from(k) + 0.5) * 2.0 * half / 32.0;
+                    q.extend([x, y, z].map(|c| f64::from(c as f32)));
+                    oct.push(octaves);
+                }
+            }
+        }
+    }
+    let n = oct.len();
+    let inputs: [(&str, &[f64]); 2] = [("q", &q), ("octaves", &oct)];
+    let mut runs = vec![
+        ("f64", program.cpu::<f64>(n, &inputs, &["density"])),
+        ("f32", program.cpu::<f32>(n, &inputs, &["density"])),
+    ];
+    if let Some(gpu) = patina_runtime::gpu::for_tests() {
+        runs.push(("GPU", program.gpu(&gpu, n, &inputs, &["density"])));
+    }
+    for (name, out) in &runs {
+        support::assert_finite(name, &out[0], 1);
+        let d = &out[0];
+        assert!(d.iter().all(|v| (0.0..=1.0).contains(v)), "{name}: density outside [0, 1]");
+        let solid = d.iter().filter(|v| **v == 1.0).count();
+        let soft = d.iter().filter(|v| **v > 0.0 && **v < 1.0).count();
+        let empty = d.iter().filter(|v| **v == 0.0).count();
+        println!("fireball density {name}: {n} samples, {solid} at 1, {soft} soft, {empty} at 0");
+        // All three regions are sampled (measured: 5% at 1, 23% soft, 72% at 0).
+        assert!(solid > n / 50 && soft > n / 10 && empty > n / 10, "{name}: {solid} / {soft} / {empty}");
+    }
+    // The GPU and the f32 interpreter run the same arithmetic (no exp, log or pow in the
+    // fire ball's density: volume.sl's numerical policy).
+    if runs.len() == 3 {
+        let (w, i) = support::worst(&runs[1].1[0], &runs[2].1[0]);
+        println!("fireball density: GPU vs f32 interpreter max |difference| {w:.2e}");
+        assert!(w <= 1e-6, "GPU density {} vs {} at sample {i}", runs[2].1[0][i], runs[1].1[0][i]);
+    }
+}
+
+#[test]
+fn fireball_colour_map_is_red_to_yellow_and_monotone() {
+    // fireball_color on a fine grid of densities in [0, 1] (and beyond, where it clamps): every
+    // channel non-decreasing, red at 0 (green and blue under a tenth of red), yellow at 1 (red
+    // and green above 0.85, blue under half of them).
+    let program = fireball_probe();
+    let dens: Vec<f64> = (-100..=1100).map(|i| f64::from(i) / 1000.0).collect();
+    let n = dens.len();
+    let q = vec![0.0; 3 * n];
+    let oct = vec![1.0; n];
+    let out = program.cpu::<f32>(n, &[("q", &q), ("octaves", &oct), ("dens", &dens)], &["mapped"]);
+    let c = |i: usize| [out[0][3 * i], out[0][3 * i + 1], out[0][3 * i + 2]];
+    for (i, d) in dens.iter().enumerate().skip(1) {
+        for k in 0..3 {
+            assert!(c(i)[k] >= c(i - 1)[k], "channel {k} decreases at density {d}");
+        }
+    }
+    let (zero, one) = (c(100), c(1100));
+    println!("fireball colour map: c(0) = {zero:?}, c(1) = {one:?}");
+    for k in 0..3 {
+        assert!((zero[k] - FIRE_RED[k]).abs() < 1e-6 && (one[k] - FIRE_YELLOW[k]).abs() < 1e-6);
+    }
+    assert!(zero[1] < 0.1 * zero[0] && zero[2] < 0.1 * zero[0], "c(0) = {zero:?} is not red");
+    assert!(one[0] > 0.85 && one[1] > 0.85 && one[2] < 0.5 * one[1], "c(1) = {one:?} is not yellow");
+    assert_eq!(c(0), zero, "below 0 the map clamps");
+    assert_eq!(c(n - 1), one, "above 1 the map clamps");
+}
+
+#[test]
+fn fireball_octaves_blend_in_without_popping() {
+    // The octave knob is continuous (turbulence weights its last octave by the fractional part):
+    // across each whole octave count k, the densities at k - 1e-4 and k + 1e-4 differ by at most
+    // 1e-3 (measured at most 2.2e-4: the weight changes by 2e-4, times the octave's |noise| / 2^k,
+    // the amplitude and the profile's slope), while a whole octave changes them visibly.
+    let program = fireball_probe();
+    let mut rng = support::Rng(0xf1ee_ba11);
+    let points: Vec<[f64; 3]> =
+        (0..1500).map(|_| rng.point(-0.5, 0.5).map(|c| f64::from(c as f32))).collect();
+    let q: Vec<f64> = points.iter().flatten().copied().collect();
+    let density = |octaves: f64| {
+        let oct = vec![octaves; points.len()];
+        program.cpu::<f64>(points.len(), &[("q", &q), ("octaves", &oct)], &["density"]).remove(0)
+    };
+    for k in [1.0, 2.0, 3.0, 4.0] {
+        let (below, above, next) = (density(k - 1e-4), density(k + 1e-4), density(k + 1.0));
+        let (jump, _) = support::worst(&below, &above);
+        let (octave, _) = support::worst(&above, &next);
+        println!(
+            "fireball octaves {k}: max change {jump:.2e} across the knob, {octave:.2e} for one more octave"
+        );
+        assert!(jump < 1e-3, "octave {k}: density jumps by {jump}");
+        assert!(octave > 0.05, "octave {k}: one more octave changes the density by only {octave}");
+    }
+}

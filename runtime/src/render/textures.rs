@@ -1,7 +1,24 @@
 //! The textures a scene's shaders read, by name: a PNG file (relative to the scene's directory)
-//! or a generated table — `checker` or `checker:N` (an N×N black-and-white board, default 8),
-//! `ramp:N` (a 1D table: N×1 texels, texel x is (x, x, x, N) / N, read with any t) and
-//! `ramp3d:N` (an N³ volume whose texel (x, y, z) is (x, y, z, N) / N).
+//! or a generated table:
+//!
+//! - `checker` or `checker:N`: an N×N black-and-white board (default 8);
+//! - `ramp:N`: a 1D table, N×1 texels, texel x is (x, x, x, N) / N (read with any t);
+//! - `ramp3d:N`: an N³ volume whose texel (x, y, z) is (x, y, z, N) / N;
+//! - `banks:N` or `banks:N:P`: the Banks / Heidrich-Seidel anisotropic BRDF table of the Stanford
+//!   listings (W. R. Mark's chapter, `shared/seeds/002_a44091d2843c02ac.txt` L3281, L3320), N×N
+//!   texels (default 64) for the specular exponent P (default 32). At texel (x, y), with the centres
+//!   s = (x + ½) / N, t = (y + ½) / N read as a = 2s − 1 = T·V and b = 2t − 1 = T·L, the texel is
+//!   (√(1 − b²), max(0, √(1 − b²) √(1 − a²) − ab)^P, 0, 1): the diffuse and the specular term,
+//!   which a shader weights by its kd and ks. The same values as the standard library's
+//!   `banks_table(s, t, 1, 0, P)` and `banks_table(s, t, 0, 1, P)` (stdlib/lighting.sl), computed
+//!   here in f64 and rounded once;
+//! - `blobs3d:N`: a synthetic density volume, N³ texels (default 32), for volume rendering. At the
+//!   texel centre c = ((x, y, z) + ½) / N the density is the sum, clamped to [0, 1], of two soft
+//!   spheres, w (1 − (d/r)²)² for distance d < r from their centres — (0.38, 0.42, 0.45) with
+//!   r = 0.24, w = 1 and (0.64, 0.6, 0.56) with r = 0.17, w = 0.9 — and a spherical shell
+//!   0.55 max(0, 1 − ((d − 0.36)/0.06)²) about (0.5, 0.5, 0.5); the texel is (ρ, ρ, ρ, 1). Every
+//!   part is 0 within 0.08 of the unit cube's faces, so a lookup that wraps (`repeat`) at the
+//!   border reads 0 there.
 
 use std::path::Path;
 use std::sync::Arc;
@@ -49,6 +66,37 @@ pub fn load(name: &str, base: &Path) -> Result<Texture, RenderError> {
                 .collect::<Vec<_>>();
             Ok(Texture { size: [n, n, n], texels: Arc::from(texels) })
         }
+        "banks" => {
+            let (size, exponent) = match spec.map(|s| s.split_once(':').unwrap_or((s, ""))) {
+                None => (None, 32.0),
+                Some((n, "")) => (Some(n), 32.0),
+                Some((n, p)) => (
+                    Some(n),
+                    p.parse::<f64>().ok().filter(|p| p.is_finite() && (0.0..=1e4).contains(p)).ok_or_else(
+                        || RenderError::Input(format!("texture `{name}`: the exponent must be 0 to 10000")),
+                    )?,
+                ),
+            };
+            let n = count(size, 64)?;
+            let texels = (0..n * n)
+                .map(|i| {
+                    let [diffuse, specular] = banks_texel(i % n, i / n, n, exponent);
+                    [diffuse as f32, specular as f32, 0.0, 1.0]
+                })
+                .collect::<Vec<_>>();
+            Ok(Texture { size: [n, n, 1], texels: Arc::from(texels) })
+        }
+        "blobs3d" => {
+            let n = count(spec, 32)?;
+            let centre = |i: u32| (f64::from(i) + 0.5) / f64::from(n);
+            let texels = (0..n * n * n)
+                .map(|i| {
+                    let rho = blobs_density([centre(i % n), centre(i / n % n), centre(i / (n * n))]) as f32;
+                    [rho, rho, rho, 1.0]
+                })
+                .collect::<Vec<_>>();
+            Ok(Texture { size: [n, n, n], texels: Arc::from(texels) })
+        }
         _ => {
             let path = base.join(name);
             let image = crate::image::Image::read_png(&path)
@@ -56,6 +104,31 @@ pub fn load(name: &str, base: &Path) -> Result<Texture, RenderError> {
             Ok(Texture { size: [image.width, image.height, 1], texels: Arc::from(image.pixels) })
         }
     }
+}
+
+/// The `banks:N:P` table's diffuse and specular terms at texel (x, y) of an N×N table.
+fn banks_texel(x: u32, y: u32, n: u32, exponent: f64) -> [f64; 2] {
+    let a = 2.0 * (f64::from(x) + 0.5) / f64::from(n) - 1.0;
+    let b = 2.0 * (f64::from(y) + 0.5) / f64::from(n) - 1.0;
+    let (sa, sb) = ((1.0 - a * a).max(0.0).sqrt(), (1.0 - b * b).max(0.0).sqrt());
+    let cosine = (sb * sa - a * b).clamp(0.0, 1.0);
+    // x^0 = 1, also at x = 0 (as the standard library's lighting_pow01).
+    [sb, if exponent == 0.0 { 1.0 } else { cosine.powf(exponent) }]
+}
+
+/// The `blobs3d` density at a point of the unit cube (the module documentation gives the formula).
+fn blobs_density(p: [f64; 3]) -> f64 {
+    let distance =
+        |c: [f64; 3]| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt();
+    let soft = |c: [f64; 3], r: f64, w: f64| {
+        let q = distance(c) / r;
+        if q < 1.0 { w * (1.0 - q * q).powi(2) } else { 0.0 }
+    };
+    let shell = {
+        let q = (distance([0.5; 3]) - 0.36) / 0.06;
+        0.55 * (1.0 - q * q).max(0.0)
+    };
+    (soft([0.38, 0.42, 0.45], 0.24, 1.0) + soft([0.64, 0.6, 0.56], 0.17, 0.9) + shell).clamp(0.0, 1.0)
 }
 
 /// The GPU form of a texture (the shaders fetch texels; the sampler is never used).
@@ -86,6 +159,75 @@ mod tests {
         let volume = load("ramp3d:2", base).unwrap();
         assert_eq!(volume.texels[7], [0.5, 0.5, 0.5, 1.0]);
         assert!(load("checker:0", base).is_err());
+        assert!(load("banks:8:-1", base).is_err());
+        assert!(load("banks:8:x", base).is_err());
         assert!(load("missing.png", base).is_err());
+    }
+
+    #[test]
+    fn banks_table_holds_the_diffuse_and_specular_terms() {
+        let base = Path::new(".");
+        let table = load("banks:16:8", base).unwrap();
+        assert_eq!(table.size, [16, 16, 1]);
+        assert_eq!(load("banks", base).unwrap().size, [64, 64, 1]);
+        for y in 0..16u32 {
+            for x in 0..16u32 {
+                // T·V and T·L at the texel centre, and the angles they are cosines of.
+                let a = (f64::from(x) + 0.5) / 8.0 - 1.0;
+                let b = (f64::from(y) + 0.5) / 8.0 - 1.0;
+                let (theta_v, theta_l) = (a.acos(), b.acos());
+                let texel = table.texels[(y * 16 + x) as usize];
+                // Diffuse: sin of the angle between the fibre and the light.
+                assert!((f64::from(texel[0]) - theta_l.sin()).abs() < 1e-6, "diffuse at ({x}, {y})");
+                // Specular: V·R for R on the mirror cone of -L about T is cos(π - θl - θv), to
+                // the 8th where positive.
+                let specular = (std::f64::consts::PI - theta_l - theta_v).cos().max(0.0).powi(8);
+                assert!((f64::from(texel[1]) - specular).abs() < 1e-6, "specular at ({x}, {y})");
+                assert_eq!((texel[2], texel[3]), (0.0, 1.0));
+            }
+        }
+        // The peak is where T·V = -T·L: on the anti-diagonal x + y = 15 the specular term is 1.
+        assert!(table.texels[(3 * 16 + 12) as usize][1] > 0.999_99);
+        assert!(table.texels[(3 * 16 + 3) as usize][1] < 0.5);
+    }
+
+    #[test]
+    fn blobs_volume_is_a_density_in_the_unit_range() {
+        let base = Path::new(".");
+        let n = 32u32;
+        let volume = load("blobs3d:32", base).unwrap();
+        assert_eq!(volume.size, [n, n, n]);
+        let at = |x: u32, y: u32, z: u32| volume.texels[(x + n * (y + n * z)) as usize];
+        let mut max = 0.0f32;
+        for (i, t) in volume.texels.iter().enumerate() {
+            assert!(
+                (0.0..=1.0).contains(&t[0]) && t[0] == t[1] && t[1] == t[2] && t[3] == 1.0,
+                "texel {i}: {t:?}"
+            );
+            max = max.max(t[0]);
+        }
+        // The densest texel is the one nearest the first blob's centre.
+        assert!(max > 0.995 && max <= 1.0, "{max}");
+        // Every texel of the outer two layers of each face is empty (the lookup wraps there).
+        for a in 0..n {
+            for b in 0..n {
+                for c in [0, 1, n - 2, n - 1] {
+                    assert_eq!(
+                        [at(c, a, b)[0], at(a, c, b)[0], at(a, b, c)[0]],
+                        [0.0; 3],
+                        "border ({a}, {b}, {c})"
+                    );
+                }
+            }
+        }
+        // Texel (12, 13, 14) has centre (0.390625, 0.421875, 0.453125): 0.011233 from the first
+        // blob's centre, so (1 - (0.011233/0.24)^2)^2 = 0.995624; 0.325 from the second's and
+        // 0.142 from the shell's centre (both outside).
+        assert!((at(12, 13, 14)[0] - 0.995_624).abs() < 1e-6, "{:?}", at(12, 13, 14));
+        // On the shell, far from both blobs: texel (16, 16, 27), centre (0.515625, 0.515625,
+        // 0.859375), 0.360054 from the centre: 0.55 (1 - (0.000054/0.06)^2) = 0.5499996.
+        assert!((at(16, 16, 27)[0] - 0.549_999_6).abs() < 1e-6, "{:?}", at(16, 16, 27));
+        // Between the shell and the blobs: empty (centre (0.48, 0.48, 0.77), 0.27 from the centre).
+        assert_eq!(at(15, 15, 24)[0], 0.0);
     }
 }

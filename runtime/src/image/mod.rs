@@ -81,13 +81,21 @@ impl Image {
         Ok(())
     }
 
-    /// Writes an 8-bit RGBA PNG: each channel clamped to [0, 1], times 255, rounded; no gamma is
-    /// applied. NaN writes as 0.
+    /// Writes an 8-bit RGBA PNG of this premultiplied image (renders are premultiplied): PNG
+    /// stores straight alpha, so colour is divided by alpha where alpha is above 0; then each
+    /// channel is clamped to [0, 1], times 255, rounded; no gamma is applied. NaN writes as 0.
     pub fn write_png(&self, path: impl AsRef<Path>) -> Result<(), ImageError> {
         let path = path.as_ref();
         self.check()?;
-        let bytes: Vec<u8> =
-            self.pixels.iter().flatten().map(|&c| (c.clamp(0.0, 1.0) * 255.0).round() as u8).collect();
+        let byte = |c: f32| (c.clamp(0.0, 1.0) * 255.0).round() as u8;
+        let bytes: Vec<u8> = self
+            .pixels
+            .iter()
+            .flat_map(|&[r, g, b, a]| {
+                let straight = if a > 0.0 && a < 1.0 { 1.0 / a } else { 1.0 };
+                [byte(r * straight), byte(g * straight), byte(b * straight), byte(a)]
+            })
+            .collect();
         let file_error = |message: String| ImageError::File { path: path.to_owned(), message };
         let buffer = image::RgbaImage::from_raw(self.width, self.height, bytes)
             .ok_or_else(|| file_error("pixel buffer does not match the size".into()))?;
@@ -167,6 +175,17 @@ mod tests {
         assert_eq!(back.get(2, 1), Some([1.0, 0.0, 1.0 / 255.0, 0.0]));
         assert_eq!(back.get(1, 0), Some([0.0, 64.0 / 255.0, 0.0, 1.0]));
         assert_eq!(back.get(3, 0), None);
+    }
+
+    #[test]
+    fn png_stores_straight_alpha() {
+        // Premultiplied half-transparent orange: the PNG holds the orange itself.
+        let img = Image::new(1, 1, [0.4, 0.2, 0.0, 0.5]);
+        let path = std::env::temp_dir().join(format!("patina-image-alpha-{}.png", std::process::id()));
+        img.write_png(&path).unwrap();
+        let back = Image::read_png(&path).unwrap();
+        let _ = std::fs::remove_file(&path);
+        assert_eq!(back.get(0, 0), Some([204.0 / 255.0, 102.0 / 255.0, 0.0, 128.0 / 255.0]));
     }
 
     #[test]

@@ -87,6 +87,40 @@ float fur_density(point p; float shell, nu, nv, comb, slab)
     return min(over + under, 1);
 }
 
+// The exit of the ray o + t d (d a unit vector, o in the shell or just outside it) from the
+// shell, as (t, 1 if the ray reached the core there else 0, 0). rho - ri is the exact distance to
+// the core (a sphere-tracing bound: no step passes through it). Towards the outer surface,
+// 0.25 - rho bounds the distance from inside; once the ray heads out (d rho / dt = radial . d > 0)
+// Newton steps on rho(t) = 0.25 (at most 0.1 long) find the exit, overshooting and coming back
+// from outside. Heading in with 0.25 - rho near 0 (at the entry), the step is at least 0.002.
+vector fur_exit(point o; vector d; float ri)
+{
+    float t = 0, core = 0;
+    for (float k = 0; k < 48; k += 1) {
+        point q = o + t * d;
+        float rho = fur_coords(q)[2];
+        float to_core = rho - ri, to_out = FUR_OUTER - rho;
+        float outward = fur_radial(q) . d;
+        if (to_core < 1e-6) {
+            core = 1;
+            break;
+        }
+        if (outward > 0 && abs(to_out) < 1e-6)
+            break;
+        float step;
+        if (to_out >= 0) {
+            if (outward > 0)
+                step = max(to_out, min(to_out / outward, 0.1));
+            else
+                step = max(to_out, 0.002);
+        } else {
+            step = outward > 0.05 ? to_out / outward : to_out; // back to the exit
+        }
+        t = clamp(t + min(step, to_core), 0, 2);
+    }
+    return vector(t, core, 0);
+}
+
 // The transmittance towards the light (unit direction l) from x, at distance rho from the core
 // circle where the height axis is `radial`: exp(-tau * sum density * ds) over shadow_steps samples
 // at the centres of equal segments up to where the ray leaves the shell, the shell taken as
@@ -115,34 +149,15 @@ surface kajiya_kay_fur(float steps = 24; float shadow_steps = 4;
     point o = transform("object", P);
     vector d = normalize(vtransform("object", I));
     float ri = FUR_OUTER - shell;
-    // The ray's interval in the shell: from P to the core or to where the ray leaves the outer
-    // surface. rho - ri is the exact distance to the core (a sphere-tracing bound, so no step
-    // passes through it); towards the outer surface 0.25 - rho is the bound from inside, and once
-    // the ray heads out (d rho / dt = radial . d > 0) Newton steps on rho(t) = 0.25 (at most 0.1
-    // long) find the exit, overshooting and coming back from outside.
-    float t_far = 0, core = 0;
-    for (float k = 0; k < 48; k += 1) {
-        point q = o + t_far * d;
-        float rho = fur_coords(q)[2];
-        float to_core = rho - ri, to_out = FUR_OUTER - rho;
-        float outward = fur_radial(q) . d;
-        if (to_core < 1e-6) {
-            core = 1;
-            break;
-        }
-        if (outward > 0 && abs(to_out) < 1e-6)
-            break;
-        float step;
-        if (to_out >= 0) {
-            if (outward > 0)
-                step = max(to_out, min(to_out / outward, 0.1));
-            else
-                step = max(to_out, 0.002); // heading in near the entry: the outer surface is behind
-        } else {
-            step = outward > 0.05 ? to_out / outward : to_out; // back to the exit
-        }
-        t_far = clamp(t_far + min(step, to_core), 0, 2);
-    }
+    // The ray's interval in the shell, [-t_back, t_far]: P lies on the mesh, on or just inside
+    // the analytic outer surface, so the ray's entry is searched backwards from P and its exit
+    // (or the core) forwards. Both are continuous as a ray turns to grazing, where a forward
+    // search from P alone would jump between a sliver and nothing with the sign of radial . d.
+    float t_back = fur_exit(o, -d, ri)[0];
+    vector fwd = fur_exit(o, d, ri);
+    float t_far = fwd[0], core = fwd[1];
+    o -= t_back * d;
+    t_far += t_back;
     float seg = t_far / max(steps, 1);
     vector e = -d;
     float4 acc = {0, 0, 0, 0};

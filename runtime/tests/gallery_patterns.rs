@@ -1,0 +1,226 @@
+//! Gallery scenes of surface patterns (no ray marching): `noise_panel` (seed-digest §12 S1, a
+//! z-slice of every noise of the standard library), `brick_filtering` (Peachey's brick wall,
+//! aliased beside box-filtered), `star` (Peachey's five-pointed star) and `planet` (Musgrave's
+//! multifractal terrain on a sphere). Each scene is rendered small on both backends and compared
+//! with the default thresholds; each has its own checks on the CPU reference's image.
+//!
+//! Run with `--nocapture` to see the measured statistics.
+
+mod support;
+
+use patina_runtime::image::{Image, Thresholds};
+use support::gallery::{at, both, cpu, scene, set};
+
+/// Renders `scene` on both backends (compared with the default thresholds) and returns the CPU
+/// reference's image; without a GPU (`PATINA_GPU=off`) only the CPU image.
+fn reference(label: &str, scene: &patina_runtime::scene::Scene) -> Image {
+    let start = std::time::Instant::now();
+    let image = match both(label, scene, Thresholds::default()) {
+        Some(r) => {
+            println!("{label}: GPU vs CPU {:?}", r.comparison);
+            r.cpu
+        }
+        None => cpu(label, scene),
+    };
+    println!("{label}: rendered in {:.1} s", start.elapsed().as_secs_f64());
+    image
+}
+
+/// Mean and standard deviation.
+fn mean_sd(xs: &[f64]) -> (f64, f64) {
+    let n = xs.len() as f64;
+    let m = xs.iter().sum::<f64>() / n;
+    let v = xs.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / n;
+    (m, v.sqrt())
+}
+
+/// The `q`-quantile (0..=1) of `xs`.
+fn quantile(xs: &[f64], q: f64) -> f64 {
+    let mut v = xs.to_vec();
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * q).round() as usize]
+}
+
+// ---------------------------------------------------------------------------------------------
+// noise_panel (seed-digest §12 S1)
+
+/// The panel's layout and each tile's grey mapping `offset + gain * value`, as in
+/// examples/shaders/noise_panel.sl (tile index 6 row + column).
+const COLUMNS: u32 = 6;
+const ROWS: u32 = 4;
+const TILES: [(&str, f64, f64); 24] = [
+    ("snoise3", 0.5, 0.5),
+    ("noise3", 0.0, 1.0),
+    ("snoise2", 0.5, 0.5),
+    ("psnoise3", 0.5, 0.5),
+    ("flownoise3", 0.5, 0.5),
+    ("snoise4", 0.5, 0.6),
+    ("vnoise", 0.5, 0.4),
+    ("vnoise_linear", 0.5, 0.5),
+    ("gnoise", 0.5, 0.85),
+    ("vgnoise", 0.5, 0.7),
+    ("vcnoise", 0.5, 0.38),
+    ("scnoise", 0.5, 0.7),
+    ("cellnoise3", 0.0, 1.0),
+    ("worley_f1", 0.0, 0.5),
+    ("worley_f2_f1", 0.0, 1.0),
+    ("worley_manhattan_f1", 0.0, 0.33),
+    ("distnoise", 0.5, 0.5),
+    ("distfbm", 0.5, 0.45),
+    ("fbm", 0.5, 0.45),
+    ("fbm_filtered", 0.5, 0.45),
+    ("turbulence", 0.0, 1.2),
+    ("ridged_multifractal", 0.0, 0.5),
+    ("hybrid_multifractal", 0.0, 0.3),
+    ("hetero_terrain", 0.3, 0.3),
+];
+
+/// One tile's pixels: (x, y, grey) for every pixel of the tile that is not gutter.
+struct Tile {
+    pixels: Vec<(u32, u32, f64)>,
+}
+
+impl Tile {
+    fn greys(&self) -> Vec<f64> {
+        self.pixels.iter().map(|p| p.2).collect()
+    }
+
+    /// The values the shader mapped to grey, read back through the tile's mapping.
+    fn values(&self, k: usize) -> Vec<f64> {
+        let (_, offset, gain) = TILES[k];
+        self.pixels.iter().map(|p| (p.2 - offset) / gain).collect()
+    }
+
+    fn grey_at(&self, x: u32, y: u32) -> Option<f64> {
+        self.pixels.iter().find(|p| p.0 == x && p.1 == y).map(|p| p.2)
+    }
+
+    /// The mean square difference between horizontally adjacent pixels of the tile.
+    fn roughness(&self) -> f64 {
+        let pairs: Vec<f64> = self
+            .pixels
+            .iter()
+            .filter_map(|&(x, y, g)| self.grey_at(x + 1, y).map(|h| (h - g) * (h - g)))
+            .collect();
+        pairs.iter().sum::<f64>() / pairs.len() as f64
+    }
+}
+
+/// Splits the panel's image into its tiles by pixel centre ((s, t) = ((x + 0.5) / W, (y + 0.5) /
+/// H): the plane fills the image). Gutter pixels are blue, tile pixels grey (R = G = B); a grey
+/// pixel in a gutter position, or a tile without pixels, fails.
+fn tiles(image: &Image) -> Vec<Tile> {
+    let mut tiles: Vec<Tile> = (0..COLUMNS * ROWS).map(|_| Tile { pixels: Vec::new() }).collect();
+    for y in 0..image.height {
+        for x in 0..image.width {
+            let p = at(image, x, y);
+            let cs = (x as f64 + 0.5) / image.width as f64 * COLUMNS as f64;
+            let ct = (y as f64 + 0.5) / image.height as f64 * ROWS as f64;
+            let (col, row) = (cs.floor(), ct.floor());
+            let (u, v) = (cs - col, ct - row);
+            let edge = u.min(1.0 - u).min(v).min(1.0 - v);
+            let grey = p[0] == p[1] && p[1] == p[2];
+            // The shader's gutter is 0.05 of a tile: a pixel centre well inside is a tile pixel,
+            // one well inside the gutter is blue (the margin covers the centres' rounding).
+            if edge > 0.051 {
+                assert!(grey, "pixel ({x}, {y}) inside a tile is not grey: {p:?}");
+                tiles[(row as u32 * COLUMNS + col as u32) as usize].pixels.push((x, y, p[0] as f64));
+            } else if edge < 0.049 {
+                assert!(!grey, "pixel ({x}, {y}) in the gutter is grey: {p:?}");
+            }
+        }
+    }
+    for (k, tile) in tiles.iter().enumerate() {
+        assert!(tile.pixels.len() >= 100, "tile {k} ({}) has {} pixels", TILES[k].0, tile.pixels.len());
+    }
+    tiles
+}
+
+#[test]
+fn noise_panel() {
+    // 72 x 48 keeps the panel's 3:2 (tiles of 12 x 12 pixels, about 100 inside the gutter); 6
+    // cells per tile side (2 pixels per cell), so that a tile holds 36 cells; 2 octaves. (The
+    // interpreter evaluates five of the lattice and cellular noises at every pixel, see the
+    // shader, which makes this scene slow in the debug profile.)
+    let mut s = scene("noise_panel", 72, 48);
+    set(&mut s, &[0], "octaves", 2.0);
+    set(&mut s, &[0], "frequency", 6.0);
+    let image = reference("noise_panel", &s);
+    let tiles = tiles(&image);
+
+    // Every tile is finite (checked by `reference`), uses a visible grey range (not constant,
+    // neither black nor white), and lies within [0, 1] but for a few outliers.
+    for (k, tile) in tiles.iter().enumerate() {
+        let g = tile.greys();
+        let (lo, hi) = (quantile(&g, 0.02), quantile(&g, 0.98));
+        let (mean, sd) = mean_sd(&g);
+        println!("tile {k:2} {:20} grey 2%..98% [{lo:.3}, {hi:.3}] mean {mean:.3} sd {sd:.3}", TILES[k].0);
+        assert!(hi - lo > 0.2, "tile {k} ({}): grey range [{lo}, {hi}] too narrow", TILES[k].0);
+        assert!(lo > -0.02 && hi < 1.02, "tile {k} ({}): grey range [{lo}, {hi}] outside [0, 1]", TILES[k].0);
+        assert!((0.15..0.85).contains(&mean), "tile {k} ({}): mean grey {mean}", TILES[k].0);
+    }
+
+    // Signed gradient noises (0 at every lattice point, the gradients symmetric): the mean is
+    // near 0. One tile holds 36 cells: taking cells as independent samples, the standard error
+    // of a tile's mean is sd / 6, and of the mean of the six tiles' standardized means
+    // 1 / sqrt(6 * 36) = 0.068; the pooled mean must be within 3 of those, 0.2, and each tile's
+    // within one sd (a tile's cells are not quite independent: the largest measured is 0.47 sd).
+    // The value noises have non-zero lattice values and are left out.
+    let mut pooled = 0.0;
+    let signed = [0, 2, 3, 4, 5, 8];
+    for k in signed {
+        let (mean, sd) = mean_sd(&tiles[k].values(k));
+        println!("{:12} mean {mean:+.4} sd {sd:.4} ({:+.3} sd)", TILES[k].0, mean / sd);
+        assert!(mean.abs() < sd, "{}: mean {mean} with sd {sd}", TILES[k].0);
+        pooled += mean / sd / signed.len() as f64;
+    }
+    println!("signed gradient noises: pooled standardized mean {pooled:+.4}");
+    assert!(pooled.abs() < 0.2, "signed gradient noises: pooled standardized mean {pooled}");
+    // Tiles 0 and 1 sample the same points: noise3 = (1 + snoise3) / 2 pixel for pixel, in [0, 1].
+    let tile_width = image.width / COLUMNS;
+    let mut largest = 0.0f64;
+    for &(x, y, g) in &tiles[1].pixels {
+        let signed = tiles[0].grey_at(x - tile_width, y).map(|h| (h - 0.5) / 0.5).expect("same layout");
+        assert!((0.0..=1.0).contains(&g), "noise3 {g} outside [0, 1]");
+        largest = largest.max((g - (1.0 + signed) / 2.0).abs());
+    }
+    println!("noise3 - (1 + snoise3) / 2: largest {largest:.2e}");
+    // The two tiles' points agree up to the rounding of 6 s - column (about 1e-6 of a tile,
+    // times 6 cells and the noise's slope).
+    assert!(largest < 1e-4, "noise3 is not (1 + snoise3) / 2: {largest}");
+    // cellnoise: in [0, 1).
+    assert!(tiles[12].values(12).iter().all(|v| (0.0..1.0).contains(v)), "cellnoise outside [0, 1)");
+    // Worley: F1 >= 0 and F2 - F1 >= 0; tiles 13 and 15 sample the same points, and the
+    // Manhattan distance to the nearest point is at least the Euclidean one.
+    assert!(tiles[13].values(13).iter().all(|&v| v >= 0.0), "F1 < 0");
+    assert!(tiles[14].values(14).iter().all(|&v| v >= 0.0), "F2 - F1 < 0");
+    let mut closest = f64::INFINITY;
+    for &(x, y, g) in &tiles[13].pixels {
+        let manhattan = tiles[15].grey_at(x + 2 * tile_width, y).expect("same layout") / TILES[15].2;
+        closest = closest.min(manhattan - g / TILES[13].2);
+    }
+    println!("Manhattan F1 - Euclidean F1: smallest {closest:.4}");
+    assert!(closest >= -1e-4, "Manhattan F1 below Euclidean F1 by {closest}");
+    // Turbulence is a sum of |noise|: never negative.
+    assert!(tiles[20].values(20).iter().all(|&v| v >= 0.0), "turbulence < 0");
+    // Periodic noise of period 2 cells: a shift by 2 cells is 2 / 6 of a tile, 4 pixels; the
+    // value repeats up to the rounding of the coordinates.
+    let periodic = &tiles[3];
+    let mut largest = 0.0f64;
+    let mut pairs = 0;
+    for &(x, y, g) in &periodic.pixels {
+        for (dx, dy) in [(4, 0), (0, 4)] {
+            if let Some(h) = periodic.grey_at(x + dx, y + dy) {
+                largest = largest.max((h - g).abs());
+                pairs += 1;
+            }
+        }
+    }
+    println!("psnoise3 period 2: largest difference over {pairs} pairs a period apart {largest:.2e}");
+    assert!(pairs > 100 && largest < 1e-4, "psnoise3 is not periodic: {largest} over {pairs} pairs");
+    // The filtered fBm drops the octaves finer than a pixel (here 0.5 cells per pixel: it keeps
+    // one octave of the two), so it is smoother from pixel to pixel than the plain fBm.
+    let (rough, smooth) = (tiles[18].roughness(), tiles[19].roughness());
+    println!("fbm adjacent-pixel mean square difference {rough:.5}, fbm_filtered {smooth:.5}");
+    assert!(smooth < 0.7 * rough, "fbm_filtered {smooth} not smoother than fbm {rough}");
+}

@@ -310,3 +310,67 @@ fn self_shadowing_darkens_the_fur_measurably() {
     assert!(m1 < 0.8 * m0, "shadows must darken the fur measurably: {m1} vs {m0}");
     assert!(m1 > 0.2 * m0, "but not black it out: {m1} vs {m0}");
 }
+
+/// The root-mean-square difference of the colour channels of two images of the same size.
+fn rms(a: &Image, b: &Image) -> f64 {
+    let sum: f64 = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(p, q)| (0..3).map(|c| (p[c] as f64 - q[c] as f64).powi(2)).sum::<f64>())
+        .sum();
+    (sum / (3 * a.pixels.len()) as f64).sqrt()
+}
+
+#[test]
+fn the_march_converges_as_steps_grow() {
+    // The scene's knob: errors against 48 steps fall as the step count doubles (shadows off, so
+    // only the view march varies; 32 x 24 pixels to keep the reference affordable).
+    let reference = cpu("48 steps", &fur_scene(32, 24, 48.0, 0.0));
+    let errors: Vec<f64> = [4.0, 8.0, 16.0]
+        .iter()
+        .map(|&n| rms(&cpu(&format!("{n} steps"), &fur_scene(32, 24, n, 0.0)), &reference))
+        .collect();
+    eprintln!("RMS against 48 steps at 4, 8, 16 steps: {errors:?}");
+    assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
+    assert!(errors[2] < 0.5 * errors[0], "{errors:?}");
+}
+
+/// Renders `scene` on the GPU alone (no comparison: for settings where the images need not
+/// agree, only be finite); `None` when `PATINA_GPU=off`.
+fn gpu_only(label: &str, scene: &patina_runtime::scene::Scene) -> Option<Image> {
+    use patina_runtime::render::{self, Backend};
+    let gpu = patina_runtime::gpu::for_tests()?;
+    let prepared = render::prepare(scene).unwrap_or_else(|e| panic!("{label}: {e}"));
+    let image =
+        render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
+    assert_finite(label, &image);
+    Some(image)
+}
+
+#[test]
+fn extreme_settings_stay_finite_and_in_range() {
+    // Seed-digest S7 stiff settings (H22): a huge tau (every hair opaque), one step, a razor-sharp
+    // highlight, a hair shell 0.001 thick, an extreme comb, a shell filling the tube (the core a
+    // circle), the mirror highlight. Finite on both backends, colours >= 0, opacity in [0, 1].
+    let cases: [&[(&str, f64)]; 4] = [
+        &[("tau", 1e7), ("steps", 1.0), ("p", 1e6)],
+        &[("shell", 0.001), ("comb", 1e4), ("shadow_steps", 1.0)],
+        &[("shell", 0.25), ("kd", 0.0), ("mirror", 1.0), ("p", 0.0)],
+        &[("tau", 0.0), ("slab", 1.0)],
+    ];
+    for (k, params) in cases.iter().enumerate() {
+        let mut s = fur_scene(24, 18, 3.0, 2.0);
+        for (name, value) in params.iter() {
+            set(&mut s, &[0], name, *value);
+        }
+        let label = format!("extreme case {k} {params:?}");
+        let mut images = vec![cpu(&label, &s)];
+        images.extend(gpu_only(&label, &s));
+        for image in &images {
+            for p in &image.pixels {
+                assert!(p[..3].iter().all(|c| *c >= 0.0) && (0.0..=1.0).contains(&p[3]), "{label}: {p:?}");
+            }
+        }
+    }
+}

@@ -1,0 +1,76 @@
+// Hart's parameterized solid textures (Hart, Carr, Kameya, Tibbitts & Coleman, "Antialiased
+// Parameterized Solid Texturing", 1999; shared/seeds/004_dc0e594aa54d1617.txt L85-297, digest
+// §3.1): the wood, marble, clouds and fire presets of <solid.sl> as four surface shaders, with
+// the solid coordinates p = scale (object-space P - origin), diffusely shaded.
+//
+// `aa` 0 samples the texture at the pixel's centre (point sampling); `aa` 1 is APST's analytic
+// filter: the preset's colour map box-filtered over the spread |grad f| fw of colour indices,
+// fw being the pixel's footprint in solid space (hart_footprint) (the noise terms finer than fw also fade to their
+// mean). The supersampled reference is the same scene with aa 0 and output.supersample.
+//
+// (The presets cannot be called under a uniform condition or loop, so there is one shader per
+// texture rather than a `material` switch, and no supersampling loop in the shader: their
+// `constant` loop counters would then be assigned under a uniform condition, E0605.)
+#include <solid.sl>
+
+// The solid coordinates of the shading point.
+point hart_solid_point(float scale; float origin[3])
+{
+    return scale * (transform("object", P) - point (origin[0], origin[1], origin[2]));
+}
+
+// The pixel's footprint in solid space, sqrt((|dp/dx|^2 + |dp/dy|^2) / 2), with dp/dx and dp/dy
+// along the raster axes from Du and Dv of p and of the window position (the inverse of its
+// Jacobian over (u, v)); 0 when `aa` is 0. Times |grad f| it is APST's width ||grad_xy f|| (9)
+// for a gradient in the tangent plane and a square footprint, and the width of the box whose
+// variance is that of f over the pixel.
+float hart_footprint(point p; float aa)
+{
+    point w = point (xyz_screen()[0], xyz_screen()[1], 0);
+    vector wu = Du(w), wv = Dv(w);
+    float det = wu[0] * wv[1] - wv[0] * wu[1];
+    vector pu = Du(p), pv = Dv(p);
+    vector dpdx = det != 0 ? (wv[1] * pu - wu[1] * pv) / det : vector (0);
+    vector dpdy = det != 0 ? (wu[0] * pv - wv[0] * pu) / det : vector (0);
+    return aa > 0.5 ? sqrt(0.5 * (dpdx . dpdx + dpdy . dpdy)) : 0;
+}
+
+// Matte shading of the texture colour.
+color hart_shade(color Ct; float Ka, Kd)
+{
+    normal Nf = faceforward(normalize(N), I);
+    return Ct * (Ka * ambient() + Kd * diffuse(Nf));
+}
+
+surface
+solid_wood(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float Ka = 0.35, Kd = 0.75)
+{
+    point p = hart_solid_point(scale, origin);
+    Ci = hart_shade(hart_wood(p, hart_footprint(p, aa)), Ka, Kd);
+    Oi = 1;
+}
+
+surface
+solid_marble(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float Ka = 0.35, Kd = 0.75)
+{
+    point p = hart_solid_point(scale, origin);
+    Ci = hart_shade(hart_marble(p, hart_footprint(p, aa)), Ka, Kd);
+    Oi = 1;
+}
+
+surface
+solid_clouds(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float Ka = 0.35, Kd = 0.75)
+{
+    point p = hart_solid_point(scale, origin);
+    Ci = hart_shade(hart_clouds(p, hart_footprint(p, aa)), Ka, Kd);
+    Oi = 1;
+}
+
+surface
+solid_fire(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float phase = 0;
+           float Ka = 0.35, Kd = 0.75)
+{
+    point p = hart_solid_point(scale, origin);
+    Ci = hart_shade(hart_fire(p, phase, hart_footprint(p, aa)), Ka, Kd);
+    Oi = 1;
+}

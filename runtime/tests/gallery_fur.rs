@@ -290,8 +290,8 @@ fn stats(image: &Image, mask: &[bool]) -> (f64, f64) {
 
 #[test]
 fn self_shadowing_darkens_the_fur_measurably() {
-    let lit = cpu("shadows off", &fur_scene(64, 48, 6.0, 0.0));
-    let shadowed = cpu("shadows on", &fur_scene(64, 48, 6.0, 3.0));
+    let lit = cpu("shadows off", &fur_scene(56, 42, 6.0, 0.0));
+    let shadowed = cpu("shadows on", &fur_scene(56, 42, 6.0, 3.0));
     let background = fur_scene(1, 1, 1.0, 1.0).output.background;
     assert_finite("shadows off", &lit);
     let mask: Vec<bool> =

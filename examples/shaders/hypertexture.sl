@@ -59,22 +59,24 @@ float eroded_cube(point p; float octaves)
 }
 
 // The density of gallery object `variant` at p (tile frame, bounded by HT_BOUND), with `octaves`
-// for the fractal ones:
+// for the fractal ones and `high_amplitude` for variant 2:
 //   0 noisy sphere, frequency f = 4 and amplitude 1/f (PH L178);
 //   1 high-frequency noisy sphere, 2f and half the amplitude (PH L188);
-//   2 high-amplitude noisy sphere, amplitude 3/f: where the noise is below -1/3, 1 + a noise < 0
-//     and the point is mirrored through the centre (PH L192; digest H10);
+//   2 high-amplitude noisy sphere, f = 4 and amplitude `high_amplitude` (the gallery's 0.75 is
+//     3/f): above 1, 1 + a noise < 0 where the noise is below -1/a and the point is mirrored
+//     through the centre (PH L192; digest H10), and since the scale factor then crosses 0 the
+//     density reaches out to any distance (the march's bound clips it);
 //   3 fractal sphere, sum_i noise(2^i f x) / (2^i f) (PH L218);
 //   4 dripping sphere (above);
 //   5 eroded cube (above).
-float ht_density(point p; float variant, octaves)
+float ht_density(point p; float variant, octaves, high_amplitude)
 {
     if (variant < 0.5)
         return noisy_sphere(p, point(0, 0, 0), 0.62, 0.16, 4, 0.25);
     if (variant < 1.5)
         return noisy_sphere(p, point(0, 0, 0), 0.62, 0.16, 8, 0.125);
     if (variant < 2.5)
-        return noisy_sphere(p, point(0, 0, 0), 0.55, 0.16, 4, 0.75);
+        return noisy_sphere(p, point(0, 0, 0), 0.55, 0.16, 4, high_amplitude);
     if (variant < 3.5)
         return fractal_sphere(p, point(0, 0, 0), 0.62, 0.16, 4, 0.25, octaves);
     if (variant < 4.5)
@@ -93,13 +95,13 @@ float ht_frequency(float variant)
 // loop so that the density's code appears once in the compiled shader (four inlined copies of
 // six densities made lavapipe's pipeline compilation take seconds per object). When d = 0 the
 // three others are not evaluated (returned 0): the sample is empty and needs no normal.
-float4 ht_samples(point p; float variant, octaves, e)
+float4 ht_samples(point p; float variant, octaves, high_amplitude, e)
 {
     float4 r = {0, 0, 0, 0};
     float k;
     for (k = 0; k < 4; k += 1) {
         vector off = vector(k == 1 ? e : 0, k == 2 ? e : 0, k == 3 ? e : 0);
-        float dk = ht_density(p - off, variant, octaves);
+        float dk = ht_density(p - off, variant, octaves, high_amplitude);
         r += {k == 0 ? dk : 0, k == 1 ? dk : 0, k == 2 ? dk : 0, k == 3 ? dk : 0};
         if (k == 0 && dk <= 0)
             break;
@@ -122,7 +124,8 @@ normal ht_normal(float4 d; vector fallback)
 // sample's opacity is volume_opacity(kappa density h), composited front to back; samples in the
 // soft region are shaded with Lambert plus Phong on the gradient normal. The eroded cube is
 // coloured by turbulence (PH L234), the others by `Cs`. Marching stops at opacity 0.999 (TM L8482).
-surface hypertexture(float variant = 0; float steps = 64; float kappa = 40; float Ks = 0.35;
+surface hypertexture(float variant = 0; float steps = 64; float high_amplitude = 0.75;
+                     float kappa = 40; float Ks = 0.35;
                      float size = 30; color background = color(0.06, 0.07, 0.1))
 {
     point o = point(HT_BOUND * (2 * s - 1), HT_BOUND * (1 - 2 * t), -2 * HT_BOUND);
@@ -142,7 +145,7 @@ surface hypertexture(float variant = 0; float steps = 64; float kappa = 40; floa
         if (tt > t1 || acc[3] >= 0.999)
             break;
         point p = o + tt * dir;
-        float4 ds = ht_samples(p, variant, octaves, e);
+        float4 ds = ht_samples(p, variant, octaves, high_amplitude, e);
         float d = ds[0];
         if (d > 0) {
             normal Nv = ht_normal(ds, V);

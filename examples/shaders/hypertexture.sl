@@ -121,8 +121,9 @@ normal ht_normal(float4 d; vector fallback)
 // One tile: the ray through (s, t) along +z (x to the right, y up, as camera space when the tile
 // faces the camera), clipped to the bounding sphere and sampled at the centres of steps of fixed
 // length h = 2 HT_BOUND / steps (so the octave clamp is the same over the whole tile). Each
-// sample's opacity is volume_opacity(kappa density h), composited front to back; samples in the
-// soft region are shaded with Lambert plus Phong on the gradient normal. The eroded cube is
+// sample's opacity is volume_opacity(kappa density h), composited front to back; samples with
+// density are shaded with Lambert plus Phong on the gradient normal (facing the viewer where the
+// gradient vanishes, in the D = 1 cores; reached only behind the soft region). The eroded cube is
 // coloured by turbulence (PH L234), the others by `Cs`. Marching stops at opacity 0.999 (TM L8482).
 surface hypertexture(float variant = 0; float steps = 64; float high_amplitude = 0.75;
                      float kappa = 40; float Ks = 0.35;

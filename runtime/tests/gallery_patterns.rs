@@ -462,3 +462,110 @@ fn star_area() {
         assert!((coverage - area).abs() < limit, "coverage {coverage} vs area {area} (samples {samples})");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// planet (Musgrave's multifractal terrain)
+
+/// What a planet pixel shows, told by its chromaticity (the lights are white, so without the
+/// specular term a pixel is its surface colour times a scalar).
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Ground {
+    Space,
+    Ocean,
+    Ice,
+    Land,
+}
+
+fn ground(p: [f32; 4]) -> Ground {
+    let (r, g, b) = (p[0] as f64, p[1] as f64, p[2] as f64);
+    let (lo, hi) = (r.min(g).min(b), r.max(g).max(b));
+    if hi < 1e-3 || (p[0] - 0.0).abs() < 1e-3 && (p[1] - 0.0).abs() < 1e-3 && (p[2] - 0.02).abs() < 1e-3 {
+        Ground::Space
+    } else if lo > 0.85 * hi {
+        Ground::Ice
+    } else if b > 1.4 * r.max(g) {
+        Ground::Ocean
+    } else {
+        Ground::Land
+    }
+}
+
+/// Whiteness: the smallest channel over the largest (1 for grey and white, whatever the light).
+fn whiteness(p: [f32; 4]) -> f64 {
+    let (r, g, b) = (p[0] as f64, p[1] as f64, p[2] as f64);
+    r.min(g).min(b) / r.max(g).max(b).max(1e-6)
+}
+
+/// The planet's classes over the image, and the number of land/ocean changes between
+/// horizontally adjacent pixels (a measure of coastline length).
+fn classify(image: &Image) -> (Vec<Ground>, usize) {
+    let classes: Vec<Ground> = image.pixels.iter().map(|&p| ground(p)).collect();
+    let w = image.width as usize;
+    let coast = (0..classes.len())
+        .filter(|&i| i % w + 1 < w)
+        .filter(|&i| {
+            let (a, b) = (classes[i], classes[i + 1]);
+            (a == Ground::Land && b == Ground::Ocean) || (a == Ground::Ocean && b == Ground::Land)
+        })
+        .count();
+    (classes, coast)
+}
+
+#[test]
+fn planet() {
+    let background = [0.0, 0.0, 0.02, 1.0];
+    let mut s = scene("planet", 96, 96);
+    set(&mut s, &[0], "octaves", 4.0);
+    // Measured: 2 silhouette pixels differ, by up to 0.25; inside the disc at most 1e-5.
+    let silhouette = Thresholds { hard_fail: 0.3, ..Thresholds::default() };
+    reference_interior("planet", &s, background, silhouette);
+
+    // The checks on the ground colours use the CPU image without the ocean's highlight.
+    set(&mut s, &[0], "Ks", 0.0);
+    let image = cpu("planet (matte)", &s);
+    let (classes, coast) = classify(&image);
+    let count = |g: Ground| classes.iter().filter(|&&c| c == g).count() as f64;
+    let disc = classes.len() as f64 - count(Ground::Space);
+    let (land, ocean, ice) =
+        (count(Ground::Land) / disc, count(Ground::Ocean) / disc, count(Ground::Ice) / disc);
+    println!(
+        "planet: disc {disc} px; land {land:.3}, ocean {ocean:.3}, ice and snow {ice:.3}; coast {coast}"
+    );
+    assert!((0.15..0.6).contains(&land), "land fraction {land}");
+    assert!(ocean > 0.25, "ocean fraction {ocean}");
+
+    // Polar cap: the north pole leans towards the camera at the top of the disc. The rows of
+    // the disc's top fifth are whiter than the rows about its middle (the equator's latitudes).
+    let rows: Vec<u32> = (0..image.height)
+        .filter(|&y| (0..image.width).any(|x| classes[(y * image.width + x) as usize] != Ground::Space))
+        .collect();
+    let (top, bottom) = (rows[0] as f64, *rows.last().unwrap() as f64);
+    let band = |from: f64, to: f64| {
+        let mut sum = 0.0;
+        let mut n = 0.0;
+        for y in 0..image.height {
+            let f = (y as f64 - top) / (bottom - top);
+            if f < from || f > to {
+                continue;
+            }
+            for x in 0..image.width {
+                let p = at(&image, x, y);
+                if ground(p) != Ground::Space {
+                    sum += whiteness(p);
+                    n += 1.0;
+                }
+            }
+        }
+        sum / n
+    };
+    let (cap, equator) = (band(0.0, 0.2), band(0.45, 0.55));
+    println!("planet: whiteness of the top fifth {cap:.3}, of the middle tenth {equator:.3}");
+    assert!(cap > equator + 0.2, "polar cap {cap} not whiter than the equator {equator}");
+
+    // The knob: more octaves make a longer (rougher) coastline.
+    set(&mut s, &[0], "octaves", 2.0);
+    let (_, coast2) = classify(&cpu("planet (2 octaves)", &s));
+    println!("planet: coastline crossings with 2 octaves {coast2}, with 4 {coast}");
+    // Measured: 119 crossings with 2 octaves, 286 with 4.
+    assert!(coast as f64 > 1.5 * coast2 as f64, "coast {coast} (4 octaves) vs {coast2} (2)");
+}

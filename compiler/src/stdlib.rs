@@ -65,3 +65,33 @@ pub fn parse_library_builtins(
 pub fn files(sources: &crate::source::SourceMap) -> rustc_hash::FxHashSet<crate::source::FileId> {
     sources.files().filter(|(_, f)| f.name.starts_with(PREFIX)).map(|(id, _)| id).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::syntax::preprocess::MemoryLoader;
+
+    #[test]
+    fn every_module_checks_clean_on_its_own() {
+        // Read as a user's own file, every function is checked, called or not: this is what lets
+        // an including file skip the module's uncalled functions.
+        for (name, source) in super::MODULES {
+            let checked = crate::check_source(name, source, &MemoryLoader::default());
+            let messages: Vec<String> =
+                checked.diagnostics.iter().map(|d| format!("{}: {}", d.code, d.message)).collect();
+            assert!(messages.is_empty(), "{name}: {messages:#?}");
+        }
+    }
+
+    #[test]
+    fn a_stanford_file_can_include_a_renderman_style_module() {
+        // lighting.sl's uncalled functions use `illuminance`, which a Stanford-style file would
+        // reject if it checked them in its own style.
+        let source = "#include <lighting.sl>\n\
+                      surface shader float4 f(primitive group float s) { return {s, 0, 0, 1}; }\n";
+        let checked = crate::check_source("stanford.sl", source, &MemoryLoader::default());
+        let messages: Vec<String> =
+            checked.diagnostics.iter().map(|d| format!("{}: {}", d.code, d.message)).collect();
+        assert!(messages.is_empty(), "{messages:#?}");
+        assert_eq!(checked.program.shaders.len(), 1);
+    }
+}

@@ -121,3 +121,57 @@ fn the_cpu_renderer_reports_exactly_the_fragments_it_shades() {
     let covered_pixels = (covered(&image, [0.1, 0.1, 0.12, 1.0]) * f64::from(64 * 48)).round() as u64;
     assert!(total >= covered_pixels && covered_pixels > 0, "{total} fragments, {covered_pixels} covered");
 }
+
+#[test]
+fn stanford_matrices_and_object_space_inputs_agree_with_the_geometry() {
+    // `__modelview * Pobj` is the eye-space P, `__invmodelview3 * __objnormal` lies along N, and
+    // `__invmodelview * P` gives Pobj back: each difference, scaled up, must vanish on both
+    // backends, and Pobj itself (blue) must follow the object's height.
+    let dir = std::env::temp_dir().join(format!("patina-matrices-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("matrices.sl"),
+        "surface shader float4 matrices() {\n\
+           float4 q = __modelview * Pobj;\n\
+           float3 n = normalize(__invmodelview3 * __objnormal);\n\
+           float4 back = __invmodelview * P;\n\
+           float3 m = __modelview3 * {Pobj[0], Pobj[1], Pobj[2]};\n\
+           float3 shift = {__modelview[0][3], __modelview[1][3], __modelview[2][3]};\n\
+           float e = length({q[0] - P[0], q[1] - P[1], q[2] - P[2]}) + length({back[0] - Pobj[0], back[1] - Pobj[1], back[2] - Pobj[2]});\n\
+           float f = length(m + shift - {P[0], P[1], P[2]});\n\
+           return {0.5 + 100 * e, 0.5 + 100 * (1 - dot(n, N)) + 100 * f, 0.5 + 0.5 * Pobj[1], 1};\n\
+         }\n",
+    )
+    .unwrap();
+    let text = "[output]\nwidth = 40\nheight = 40\n\
+                [camera]\nfrom = [1.0, 1.5, -4.0]\nto = [0.0, 0.0, 0.0]\nfov = 40\n\
+                [[object]]\nmesh = \"sphere\"\ndetail = 24\nshader = \"matrices.sl\"\n\
+                transform = [{ translate = [0.3, 0.1, 0.2] }, { rotate = { angle = 35, axis = [1.0, 0.0, 1.0] } }, \
+                { scale = [1.1, 0.9, 1.0] }]\n";
+    let s = Scene::parse(text, dir.join("matrices.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
+    let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{e}"));
+    let mut images = vec![render::render(&prepared, Backend::Cpu, None).unwrap()];
+    if let Some(gpu) = patina_runtime::gpu::for_tests() {
+        images.push(render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap());
+    }
+    for (backend, image) in ["CPU", "GPU"].iter().zip(&images) {
+        let mut heights = Vec::new();
+        for (i, p) in image.pixels.iter().enumerate() {
+            if (p[0] - 0.0).abs() < 1e-6 && p[3] == 1.0 && p[1] == 0.0 {
+                continue; // background
+            }
+            assert!((p[0] - 0.5).abs() < 2e-3 && (p[1] - 0.5).abs() < 2e-3, "{backend}: pixel {i}: {p:?}");
+            heights.push((i as u32 / image.width, p[2]));
+        }
+        assert!(heights.len() > 300, "the sphere covers {} pixels", heights.len());
+        // Object y runs from -1 to 1: blue spans most of [0, 1].
+        let lo = heights.iter().map(|h| h.1).fold(1.0f32, f32::min);
+        let hi = heights.iter().map(|h| h.1).fold(0.0f32, f32::max);
+        assert!(lo < 0.2 && hi > 0.8, "{backend}: Pobj's height runs {lo} to {hi}");
+    }
+    if images.len() == 2 {
+        let t = Thresholds::default();
+        let c = compare(&images[0], &images[1], &t).unwrap();
+        assert!(c.passes(&t), "{c:?}");
+    }
+}

@@ -89,9 +89,16 @@ pub fn check(
         }
     }
     // Functions are checked where they are inlined; the ones no shader calls (all of them, in a
-    // library module) are checked on their own so that their errors are reported too.
-    let mut unused: Vec<&ast::FunctionDef> =
-        table.user.values().flatten().copied().filter(|f| !shared.inlined.contains(&f.span)).collect();
+    // library module) are checked on their own so that their errors are reported too. An included
+    // standard-library module is not: it checks clean on its own (a test in `stdlib.rs` says so),
+    // and its functions are RenderMan-style, which a Stanford-style file would misread.
+    let mut unused: Vec<&ast::FunctionDef> = table
+        .user
+        .values()
+        .flatten()
+        .copied()
+        .filter(|f| !shared.inlined.contains(&f.span) && !table.stdlib_files.contains(&f.span.file))
+        .collect();
     unused.sort_by_key(|f| (f.span.file, f.span.start));
     // A function outside any shader is read in the file's style (Stanford if its shaders are).
     let stanford = module

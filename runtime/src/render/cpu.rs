@@ -7,8 +7,8 @@ use glam::Vec3;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, POINT_INDEX};
 use patina_compiler::split::StageKind;
 
-use super::frame::{Frame, VertexGeometry, uniform_value};
-use super::program::{SurfaceProgram, set_spaces};
+use super::frame::{Frame, VertexGeometry};
+use super::program::{SurfaceProgram, set_globals, set_spaces};
 use super::{Object, Prepared, Progress, RenderError, Unit};
 use crate::image::Image;
 use crate::raster::{Blend, DrawOptions, Fragments, Framebuffer, Varyings, draw};
@@ -22,7 +22,7 @@ pub fn render(
     progress: &dyn Progress,
 ) -> Result<Image, RenderError> {
     let shaded_vertices: Vec<Vertices> =
-        prepared.objects.iter().map(|o| vertex_stage(prepared, o)).collect::<Result<_, _>>()?;
+        prepared.objects.iter().map(vertex_stage).collect::<Result<_, _>>()?;
     // A dry run of the rasterizer, with the same depth tests in the same order, counts exactly the
     // fragments the fragment stage will shade; it costs little next to shading them.
     let mut dry = Framebuffer::new(width, height, prepared.background);
@@ -74,7 +74,7 @@ enum Carried {
 }
 
 /// Runs the vertex stage of `object` at every vertex and lays out the varyings.
-fn vertex_stage<'a>(prepared: &Prepared, object: &'a Object) -> Result<Vertices<'a>, RenderError> {
+fn vertex_stage<'a>(object: &'a Object) -> Result<Vertices<'a>, RenderError> {
     let surface = &object.surface;
     let frame = &object.frame;
     let stanford = surface.stages.fragment.stanford;
@@ -85,7 +85,7 @@ fn vertex_stage<'a>(prepared: &Prepared, object: &'a Object) -> Result<Vertices<
     // The vertex stage.
     let mut vertex = Evaluator::<f32>::new(&surface.vertex);
     bind_textures(&mut vertex, &surface.vertex, object);
-    set_uniforms(&mut vertex, &surface.vertex, surface, prepared, frame, StageKind::Vertex)?;
+    set_uniforms(&mut vertex, &surface.vertex, surface, frame);
     let mut columns: Vec<(String, Vec<f64>)> = Vec::new();
     for (_, slot) in surface.vertex.slots() {
         if slot.uniform {
@@ -183,7 +183,7 @@ fn fragment_stage(
     // The fragment stage.
     let mut fragment = Evaluator::<f32>::new(&surface.fragment);
     bind_textures(&mut fragment, &surface.fragment, object);
-    set_uniforms(&mut fragment, &surface.fragment, surface, prepared, frame, StageKind::Fragment)?;
+    set_uniforms(&mut fragment, &surface.fragment, surface, frame);
     let mut lights: Vec<Evaluator<f32>> = prepared
         .lights
         .iter()
@@ -211,32 +211,16 @@ fn fragment_stage(
 }
 
 /// Uniform inputs of a stage program: every uniform slot the interface or the host knows.
-fn set_uniforms(
-    eval: &mut Evaluator<f32>,
-    program: &CpuProgram,
-    surface: &SurfaceProgram,
-    prepared: &Prepared,
-    frame: &Frame,
-    _stage: StageKind,
-) -> Result<(), RenderError> {
+fn set_uniforms(eval: &mut Evaluator<f32>, program: &CpuProgram, surface: &SurfaceProgram, frame: &Frame) {
     set_spaces(eval, program, &frame.spaces);
     for (name, value) in &surface.uniforms {
         if program.slot(name).is_some_and(|id| program.slots().any(|(i, s)| i == id && s.uniform)) {
             let _ = eval.set(name, value);
         }
     }
-    for name in ["Cs", "Os", "time", "dtime", "E", "clip"] {
-        if program.slot(name).is_some() {
-            let source =
-                patina_compiler::backend::wgsl::interface::UniformSource::Global { name: name.into() };
-            if let Ok(v) = uniform_value(&source, surface, &prepared.lights, frame) {
-                // Cs and Os are per-point inputs in RenderMan: a column of the object's colour
-                // is given at evaluation; here only uniform slots can be set.
-                let _ = eval.set(name, &v);
-            }
-        }
-    }
-    Ok(())
+    // Cs and Os are per-point inputs in RenderMan: a column of the object's colour is given at
+    // evaluation; only uniform slots are set here.
+    set_globals(eval, program, frame);
 }
 
 #[allow(clippy::too_many_arguments)]

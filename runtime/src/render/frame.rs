@@ -4,7 +4,7 @@
 //! The vertex geometry follows the WGSL backend's entry point (`compiler/src/backend/wgsl/entry.rs`)
 //! formula for formula, so that the CPU reference sees the inputs the GPU sees.
 
-use glam::{Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec3};
 use patina_compiler::backend::wgsl::interface::{GeometryMatrix, Interface, UniformSource};
 
 use super::RenderError;
@@ -35,6 +35,10 @@ pub struct Frame {
 /// The predefined variables of one vertex, in camera space (RenderMan style).
 #[derive(Clone, Copy, Debug)]
 pub struct VertexGeometry {
+    /// The mesh's position and normal, in object space (Stanford's `Pobj`, `__position`, `__normal`).
+    pub p_obj: Vec3,
+    /// See `p_obj`.
+    pub n_obj: Vec3,
     pub p: Vec3,
     pub n: Vec3,
     pub u: f32,
@@ -48,6 +52,8 @@ impl Frame {
     pub fn geometry(&self, mesh: &Mesh) -> Vec<VertexGeometry> {
         (0..mesh.positions.len())
             .map(|i| VertexGeometry {
+                p_obj: Vec3::from(mesh.positions[i]),
+                n_obj: Vec3::from(mesh.normals[i]),
                 p: apply(self.object_to_camera, Vec3::from(mesh.positions[i]), 1.0),
                 n: apply(self.normal_to_camera, Vec3::from(mesh.normals[i]), 0.0),
                 u: mesh.uvs[i][0],
@@ -72,6 +78,8 @@ impl VertexGeometry {
                 "T" => v3(t),
                 "B" => v3(n.cross(t)),
                 "E" => v3(-self.p / self.p.length()),
+                "Pobj" | "__position" => vec![self.p_obj.x, self.p_obj.y, self.p_obj.z, 1.0],
+                "__normal" | "__objnormal" => v3(self.n_obj),
                 _ => return None,
             });
         }
@@ -107,15 +115,9 @@ pub fn uniform_value(
         UniformSource::Param { name } | UniformSource::Host { name } => {
             find(&surface.uniforms, name).ok_or_else(|| missing(format!("`{name}`")))?
         }
-        UniformSource::Global { name } => match name.as_str() {
-            "Cs" => f64s(&frame.color),
-            "Os" => f64s(&frame.opacity),
-            "Ca" | "__ambient" => vec![0.0; 4],
-            "time" | "dtime" => vec![0.0],
-            "E" => vec![0.0; 3],
-            "clip" => f64s(&frame.clip),
-            other => return Err(missing(format!("predefined variable `{other}`"))),
-        },
+        UniformSource::Global { name } => {
+            global_value(frame, name).ok_or_else(|| missing(format!("predefined variable `{name}`")))?
+        }
         UniformSource::Space { name, inverse, light } => {
             let spaces = if light.is_some() { &frame.light_spaces } else { &frame.spaces };
             let m = spaces.iter().find(|(n, _)| n == name).map_or(Mat4::IDENTITY, |(_, m)| *m);
@@ -137,6 +139,48 @@ pub fn uniform_value(
             GeometryMatrix::NormalToCamera => frame.normal_to_camera,
             GeometryMatrix::CameraToClip => frame.camera_to_clip,
         }),
+    })
+}
+
+/// The uniform predefined variables the runtime gives a value.
+pub const UNIFORM_GLOBALS: [&str; 13] = [
+    "Cs",
+    "Os",
+    "time",
+    "dtime",
+    "E",
+    "clip",
+    "Ca",
+    "__ambient",
+    "__modelview",
+    "__invmodelview",
+    "__modelview3",
+    "__invmodelview3",
+    "__projection",
+];
+
+/// The value of the uniform predefined variable `name` for `frame`'s object, in the language's
+/// component order; `None` for a name that is not one of [`UNIFORM_GLOBALS`].
+pub fn global_value(frame: &Frame, name: &str) -> Option<Vec<f64>> {
+    let f64s = |v: &[f32]| v.iter().map(|x| f64::from(*x)).collect::<Vec<f64>>();
+    // Stanford multiplies column vectors (`M * v`) and the language lists a matrix row by row,
+    // which for glam's column-major matrices is the transpose's column order.
+    let rows = |m: Mat4| f64s(&m.transpose().to_cols_array());
+    let rows3 = |m: Mat3| f64s(&m.transpose().to_cols_array());
+    let modelview = frame.object_to_camera;
+    Some(match name {
+        "Cs" => f64s(&frame.color),
+        "Os" => f64s(&frame.opacity),
+        "Ca" | "__ambient" => vec![0.0; 4],
+        "time" | "dtime" => vec![0.0],
+        "E" => vec![0.0; 3],
+        "clip" => f64s(&frame.clip),
+        "__modelview" => rows(modelview),
+        "__invmodelview" => rows(modelview.inverse()),
+        "__modelview3" => rows3(Mat3::from_mat4(modelview)),
+        "__invmodelview3" => rows3(Mat3::from_mat4(modelview).inverse().transpose()),
+        "__projection" => rows(frame.camera_to_clip),
+        _ => return None,
     })
 }
 

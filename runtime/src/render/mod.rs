@@ -125,10 +125,6 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
             Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera)?),
             None => None,
         };
-        let surface = program::surface_program(loaded, displacement, &lights, &spaces)?;
-        let mesh = o
-            .build_mesh()
-            .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;
         let object_to_camera = world_to_camera * object_to_world;
         let frame = Frame {
             object_to_camera,
@@ -143,6 +139,10 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
                 [near, far]
             },
         };
+        let surface = program::surface_program(loaded, displacement, &lights, &frame)?;
+        let mesh = o
+            .build_mesh()
+            .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;
         let base = scene.file.parent().unwrap_or(std::path::Path::new("."));
         let textures = surface
             .gpu

@@ -14,6 +14,7 @@ use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
 use super::RenderError;
+use super::frame::{Frame, UNIFORM_GLOBALS, global_value};
 use crate::scene::{ParamValue, ShaderRef};
 
 /// A checked shader and the source it came from (kept for rendering diagnostics).
@@ -154,7 +155,7 @@ pub struct SurfaceProgram {
 pub fn light_program(loaded: LoadedShader, spaces: &[(String, Mat4)]) -> Result<LightProgram, RenderError> {
     let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
     let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
-    let values = evaluate_params(&cpu, &loaded, spaces, &[])?;
+    let values = evaluate_params(&cpu, &loaded, spaces, None, &[])?;
     Ok(LightProgram { loaded, cpu, values })
 }
 
@@ -171,8 +172,9 @@ pub fn surface_program(
     loaded: LoadedShader,
     displacement: Option<LoadedShader>,
     lights: &[LightProgram],
-    spaces: &[(String, Mat4)],
+    frame: &Frame,
 ) -> Result<SurfaceProgram, RenderError> {
+    let spaces = &frame.spaces;
     let stages = split::split(&loaded.shader).map_err(|d| RenderError::Compile(d.message))?;
     let bound: Vec<BoundLight> = lights
         .iter()
@@ -187,7 +189,7 @@ pub fn surface_program(
             let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
             let cpu =
                 CpuProgram::compile(&d.shader, &binding).map_err(|e| RenderError::Compile(e.message))?;
-            let values = evaluate_params(&cpu, &d, spaces, &[])?;
+            let values = evaluate_params(&cpu, &d, spaces, Some(frame), &[])?;
             Some(DisplacementProgram { loaded: d, cpu, values })
         }
         None => None,
@@ -202,6 +204,7 @@ pub fn surface_program(
     let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };
     let compile = |s: &Shader| CpuProgram::compile(s, &binding).map_err(|d| RenderError::Compile(d.message));
     let host = compile(&stages.host)?;
+    eprintln!("DEBUG n={} {}", host.instruction_count(), stages.host.body.len());
     let vertex = compile(&stages.vertex)?;
     let fragment = compile(&stages.fragment)?;
     let host_outputs: Vec<String> = stages
@@ -210,22 +213,27 @@ pub fn surface_program(
         .filter(|t| t.from == split::StageKind::Host)
         .map(|t| t.name.to_string())
         .collect();
-    let uniforms = evaluate_params(&host, &loaded, spaces, &host_outputs)?;
+    let uniforms = evaluate_params(&host, &loaded, spaces, Some(frame), &host_outputs)?;
     Ok(SurfaceProgram { loaded, stages, gpu, vertex, fragment, uniforms, displacement })
 }
 
-/// Runs a program once with the scene's parameter values and reads back every parameter (the
-/// scene's value or its default) and the named extra outputs.
+/// Runs a program once with the scene's parameter values (and, for an object's programs, its
+/// frame's uniform predefined variables) and reads back every parameter (the scene's value or its
+/// default) and the named extra outputs.
 fn evaluate_params(
     program: &CpuProgram,
     loaded: &LoadedShader,
     spaces: &[(String, Mat4)],
+    frame: Option<&Frame>,
     extra: &[String],
 ) -> Result<Vec<(String, Vec<f64>)>, RenderError> {
     // In f64, which holds every 32-bit integer exactly (the values are rounded to f32 where
     // they are used as floats).
     let mut eval = Evaluator::<f64>::new(program);
     set_spaces(&mut eval, program, spaces);
+    if let Some(frame) = frame {
+        set_globals(&mut eval, program, frame);
+    }
     for (name, value) in &loaded.params {
         eval.set(name, value).map_err(|e| RenderError::Input(format!("parameter `{name}`: {e}")))?;
     }
@@ -238,6 +246,24 @@ fn evaluate_params(
     let refs: Vec<&str> = names.iter().map(String::as_str).collect();
     let values = eval.eval_points(1, &[], &refs).map_err(|e| RenderError::Compile(e.to_string()))?;
     Ok(names.into_iter().zip(values).collect())
+}
+
+/// Fills every uniform predefined variable a program reads (`Cs`, `time`, Stanford's matrices, ...)
+/// with its value for `frame`, as the GPU's uniform block holds it.
+pub fn set_globals<F: patina_compiler::backend::cpu::scalar::Real>(
+    eval: &mut Evaluator<'_, F>,
+    program: &CpuProgram,
+    frame: &Frame,
+) {
+    for name in UNIFORM_GLOBALS {
+        if program.slot(name).is_some()
+            && let Some(value) = global_value(frame, name)
+        {
+            // `set` fails only on names the program lacks, which was just ruled out; a per-point
+            // input of that name (RenderMan's `Cs`) is given per point by the caller instead.
+            let _ = eval.set(name, &value);
+        }
+    }
 }
 
 /// Fills every `space:NAME` slot a program has from the scene's spaces.

@@ -1033,3 +1033,33 @@ fn a_constant_variable_stored_under_a_varying_condition_is_still_an_error() {
     ]));
     assert_eq!(found, [Code::ControlDependence; 2]);
 }
+
+#[test]
+fn a_functions_constant_counter_answers_only_to_conditions_inside_it() {
+    // The counter exists only while the call runs, so the varying `if` around the call cannot
+    // make it differ between the points that see it; this is how the stdlib's lattice loops are
+    // written (vnoise called under a varying condition).
+    let src = lines(&[
+        "float tri(float x) { float c = 0; constant float j; for (j = 0; j < 3; j += 1) c += x * j; return c; }",
+        "surface t() { float c = 0; if (s > 0.5) { c = tri(s); } Ci = c; }",
+    ]);
+    let sh = shader(&src);
+    assert_eq!(rate_of(&sh, "j").frequency, Frequency::Constant);
+    assert!(
+        shader(&lines(&[
+            "#include <lattice.sl>",
+            "surface r() { float v = 0; if (s > 0.5) v = vnoise(P); Ci = v; }"
+        ]))
+        .params
+        .is_empty()
+    );
+    // A condition inside the function still counts.
+    let inside = lines(&[
+        "float bad(float x) { constant float j = 0; if (x > 0.5) j = 1; return j; }",
+        "surface t() { Ci = bad(s); }",
+    ]);
+    assert_eq!(codes(&inside).0, vec![Code::ControlDependence]);
+    // So does a varying condition around the call for a variable declared outside the function.
+    let outside = lines(&["surface t() { constant float j = 0; if (s > 0.5) j = 1; Ci = j; }"]);
+    assert_eq!(codes(&outside).0, vec![Code::ControlDependence]);
+}

@@ -122,16 +122,21 @@ fn the_cpu_renderer_reports_exactly_the_fragments_it_shades() {
     assert!(total >= covered_pixels && covered_pixels > 0, "{total} fragments, {covered_pixels} covered");
 }
 
+/// A scene from text whose object uses the shader `source`, written as NAME.sl beside it in a
+/// scratch directory.
+fn written_scene(name: &str, source: &str, scene: &str) -> Scene {
+    let dir = std::env::temp_dir().join(format!("patina-render-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join(format!("{name}.sl")), source).unwrap();
+    Scene::parse(scene, dir.join(format!("{name}.toml")), &dir).unwrap_or_else(|e| panic!("{e}"))
+}
+
 #[test]
 fn stanford_matrices_and_object_space_inputs_agree_with_the_geometry() {
     // `__modelview * Pobj` is the eye-space P, `__invmodelview3 * __objnormal` lies along N, and
     // `__invmodelview * P` gives Pobj back: each difference, scaled up, must vanish on both
     // backends, and Pobj itself (blue) must follow the object's height.
-    let dir = std::env::temp_dir().join(format!("patina-matrices-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("matrices.sl"),
-        "surface shader float4 matrices() {\n\
+    let shader = "surface shader float4 matrices() {\n\
            float4 q = __modelview * Pobj;\n\
            float3 n = normalize(__invmodelview3 * __objnormal);\n\
            float4 back = __invmodelview * P;\n\
@@ -140,15 +145,13 @@ fn stanford_matrices_and_object_space_inputs_agree_with_the_geometry() {
            float e = length({q[0] - P[0], q[1] - P[1], q[2] - P[2]}) + length({back[0] - Pobj[0], back[1] - Pobj[1], back[2] - Pobj[2]});\n\
            float f = length(m + shift - {P[0], P[1], P[2]});\n\
            return {0.5 + 100 * e, 0.5 + 100 * (1 - dot(n, N)) + 100 * f, 0.5 + 0.5 * Pobj[1], 1};\n\
-         }\n",
-    )
-    .unwrap();
+         }\n";
     let text = "[output]\nwidth = 40\nheight = 40\n\
                 [camera]\nfrom = [1.0, 1.5, -4.0]\nto = [0.0, 0.0, 0.0]\nfov = 40\n\
                 [[object]]\nmesh = \"sphere\"\ndetail = 24\nshader = \"matrices.sl\"\n\
                 transform = [{ translate = [0.3, 0.1, 0.2] }, { rotate = { angle = 35, axis = [1.0, 0.0, 1.0] } }, \
                 { scale = [1.1, 0.9, 1.0] }]\n";
-    let s = Scene::parse(text, dir.join("matrices.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
+    let s = written_scene("matrices", shader, text);
     let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{e}"));
     let mut images = vec![render::render(&prepared, Backend::Cpu, None).unwrap()];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
@@ -174,4 +177,39 @@ fn stanford_matrices_and_object_space_inputs_agree_with_the_geometry() {
         let c = compare(&images[0], &images[1], &t).unwrap();
         assert!(c.passes(&t), "{c:?}");
     }
+}
+
+#[test]
+fn library_noise_under_a_varying_condition_renders_alike() {
+    // vnoise's loop counters are `constant` inside the function, which a varying `if` around the
+    // call does not change; and a function's `uint s` must not share the private variable of the
+    // predefined `s` on the GPU (it did: the module failed validation).
+    let shader = "#include <lattice.sl>\n\
+                  uint triple(uint v) { return v * 3u; }\n\
+                  float hashed(float x) { uint s = 5u; uint a = triple(uint(x) + s); return float(a & 255u) / 255; }\n\
+                  surface gated() {\n\
+                    float v = 0;\n\
+                    if (s > 0.5) v = vnoise(P * 4);\n\
+                    Ci = color(v, hashed(40 * t), 0.5 * s);\n\
+                    Oi = 1;\n\
+                  }\n";
+    let text = "[output]\nwidth = 32\nheight = 32\n\
+                [camera]\nfrom = [0.0, 0.0, -2.0]\nto = [0.0, 0.0, 0.0]\nfov = 53.13\n\
+                [[object]]\nmesh = \"plane\"\nshader = \"gated.sl\"\n";
+    let s = written_scene("gated", shader, text);
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{e}"));
+    let cpu = render::render(&prepared, Backend::Cpu, None).unwrap();
+    let gpu = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{e}"));
+    let t = Thresholds::default();
+    let c = compare(&cpu, &gpu, &t).unwrap();
+    assert!(c.passes(&t), "{c:?}");
+    // Where s < 0.5 (the left half) the noise is not taken; on the right it varies.
+    let red = |x: u32, y: u32| cpu.pixels[(y * cpu.width + x) as usize][0];
+    assert!((0..32).all(|y| (0..14).all(|x| red(x, y) == 0.0)));
+    let right: Vec<f32> =
+        (0..32).flat_map(|y| (18..32).map(move |x| (x, y))).map(|(x, y)| red(x, y)).collect();
+    let spread =
+        right.iter().copied().fold(f32::MIN, f32::max) - right.iter().copied().fold(f32::MAX, f32::min);
+    assert!(spread > 0.2, "the noise varies on the right: spread {spread}");
 }

@@ -191,6 +191,12 @@ pub const GLOBALS: &[Global] = &[
     g("__ambient", Base::Float4, PrimitiveGroup, false, Read, SURFACE_LIGHT, Stanford, Anywhere, "global ambient colour"),
 ];
 
+/// Whether `name` is a predefined variable of any shader kind or style (backends keep their own
+/// names clear of these).
+pub fn is_predefined(name: &str) -> bool {
+    GLOBALS.iter().any(|g| g.name == name)
+}
+
 /// The predefined variable `name` as seen from a shader of `kind` written in `stanford` style.
 pub fn lookup(name: &str, kind: ShaderKind, stanford: bool) -> Option<&'static Global> {
     GLOBALS.iter().find(|g| {

@@ -47,6 +47,11 @@ struct Analysis<'s> {
     checks: Vec<(Target, ExprId, Rate, Option<Span>, Span)>,
     /// The locals whose only store is their declaration (`ir::stores`).
     initialised_only: Vec<bool>,
+    /// The inlined calls being walked, innermost last: the function, and the control rate (with
+    /// its origin) of the conditions inside its body so far. A declared variable of an inlined
+    /// function is checked against these only: it exists only while the body runs, so a
+    /// condition around the call cannot make it differ between the points that see it.
+    inlined: Vec<(smol_str::SmolStr, Rate, Option<Span>)>,
 }
 
 #[derive(Copy, Clone)]
@@ -78,6 +83,7 @@ pub fn infer(shader: &mut Shader, diags: &mut Diagnostics) {
         .collect();
     let mut a = Analysis {
         initialised_only,
+        inlined: Vec::new(),
         origins: vec![constant; shader.exprs.len()],
         local_origins,
         shader,
@@ -200,33 +206,45 @@ impl Analysis<'_> {
                 }
                 Stmt::If { cond, then, otherwise } => {
                     let (inner, origin) = self.under(control, control_origin, *cond);
+                    let saved = self.enter(self.rate(*cond), self.shader.exprs[cond.0 as usize].span);
                     self.block(then, inner, origin, in_light_loop);
                     self.block(otherwise, inner, origin, in_light_loop);
+                    self.inlined = saved;
                 }
                 Stmt::Loop { cond, body, step, .. } => {
                     let (mut inner, mut origin) = match cond {
                         Some(c) => self.under(control, control_origin, *c),
                         None => (control, control_origin),
                     };
+                    let saved = self.inlined.clone();
+                    if let Some(c) = cond {
+                        self.enter(self.rate(*c), self.shader.exprs[c.0 as usize].span);
+                    }
                     // A loop left under a varying condition runs a varying number of times.
                     if let Some((rate, span)) = self.exit_conditions(body, 0) {
                         if rate.frequency > inner.frequency {
                             origin = Some(span);
                         }
                         inner = inner.join(Rate { perlight: false, ..rate });
+                        self.enter(rate, span);
                     }
                     self.block(body, inner, origin, in_light_loop);
                     self.block(step, inner, origin, in_light_loop);
+                    self.inlined = saved;
                 }
-                Stmt::Inline { body, .. } => {
+                Stmt::Inline { function, body, .. } => {
                     let (mut inner, mut origin) = (control, control_origin);
+                    let saved = self.inlined.clone();
+                    self.inlined.push((function.clone(), Rate::CONSTANT, None));
                     if let Some((rate, span)) = self.exit_conditions(body, u32::MAX) {
                         if rate.frequency > inner.frequency {
                             origin = Some(span);
                         }
                         inner = inner.join(Rate { perlight: false, ..rate });
+                        self.enter(rate, span);
                     }
                     self.block(body, inner, origin, in_light_loop);
+                    self.inlined = saved;
                 }
                 Stmt::Illuminance { args, body } | Stmt::Emit { args, body, .. } => {
                     let mut inner = control;
@@ -239,11 +257,29 @@ impl Analysis<'_> {
                         inner = inner.join(Rate { perlight: false, ..r });
                     }
                     let lights = matches!(stmt, Stmt::Illuminance { .. });
+                    let saved = self.inlined.clone();
+                    for a in args {
+                        self.enter(self.rate(*a), self.shader.exprs[a.0 as usize].span);
+                    }
                     self.block(body, inner, origin, in_light_loop || lights);
+                    self.inlined = saved;
                 }
                 Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
             }
         }
+    }
+
+    /// Joins a condition of rate `rate` (at `span`) into every inlined call's control; returns
+    /// the frames as they were, for the caller to restore when it leaves the condition.
+    fn enter(&mut self, rate: Rate, span: Span) -> Vec<(smol_str::SmolStr, Rate, Option<Span>)> {
+        let saved = self.inlined.clone();
+        for (_, control, origin) in &mut self.inlined {
+            if rate.frequency > control.frequency {
+                *origin = Some(span);
+            }
+            *control = control.join(Rate { perlight: false, ..rate });
+        }
+        saved
     }
 
     /// The control rate inside a statement conditioned on `cond`.
@@ -323,15 +359,20 @@ impl Analysis<'_> {
     ) {
         // Which element is written depends on the indices: they act like a condition on the store.
         let (mut control, mut origin) = (control, origin);
+        let (mut index_control, mut index_origin) = (Rate::CONSTANT, None);
         let mut at = place;
         while let Place::Index(inner, index) = at {
             let r = self.rate(*index);
+            let index_span = self.shader.exprs[index.0 as usize].span;
             if r.frequency > control.frequency {
-                let index_span = self.shader.exprs[index.0 as usize].span;
                 self.index_origins.insert(index_span);
                 origin = Some(index_span);
             }
+            if r.frequency > index_control.frequency {
+                index_origin = Some(index_span);
+            }
             control = control.join(Rate { perlight: false, ..r });
+            index_control = index_control.join(Rate { perlight: false, ..r });
             at = inner;
         }
         let mut value_rate = self.rate(value);
@@ -369,6 +410,20 @@ impl Analysis<'_> {
                         self.changed = true;
                     }
                 }
+                // A declared variable of an inlined function answers only to the conditions
+                // inside the innermost call of that function.
+                let local = &self.shader.locals[l.0 as usize];
+                let (control, origin) = match self
+                    .inlined
+                    .iter()
+                    .rev()
+                    .find(|(f, _, _)| local.declared && local.function.as_ref() == Some(f))
+                {
+                    Some((_, inner, inner_origin)) if inner.frequency < control.frequency => {
+                        (inner.join(Rate { perlight: false, ..index_control }), inner_origin.or(index_origin))
+                    }
+                    _ => (control, origin),
+                };
                 self.checks.push((Target::Local(l), value, control, origin, span));
             }
             Target::Global(g) => self.checks.push((Target::Global(g), value, control, origin, span)),

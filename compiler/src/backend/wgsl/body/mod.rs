@@ -398,7 +398,10 @@ pub(crate) fn variable_names(shader: &Shader, prefix: &str) -> FxHashMap<LocalId
         .enumerate()
         .map(|(i, l)| {
             let base = sanitize(&l.name);
-            let name = if count[l.name.as_str()] > 1 { format!("{base}_{i}") } else { base };
+            // A variable named like a predefined one (a function's `uint s`) would share the
+            // private variable that holds the predefined value.
+            let taken = count[l.name.as_str()] > 1 || crate::sema::globals::is_predefined(&l.name);
+            let name = if taken { format!("{base}_{i}") } else { base };
             (LocalId(i as u32), format!("{prefix}{name}"))
         })
         .collect()

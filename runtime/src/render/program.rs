@@ -204,7 +204,6 @@ pub fn surface_program(
     let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };
     let compile = |s: &Shader| CpuProgram::compile(s, &binding).map_err(|d| RenderError::Compile(d.message));
     let host = compile(&stages.host)?;
-    eprintln!("DEBUG n={} {}", host.instruction_count(), stages.host.body.len());
     let vertex = compile(&stages.vertex)?;
     let fragment = compile(&stages.fragment)?;
     let host_outputs: Vec<String> = stages

@@ -5,7 +5,7 @@
 // inner surface (`project`, analytic for a torus), and the noise there, shaped by
 // gain_0.9(bias_0.3(.)), times D is the density (stdlib volume.sl: hypertexture_fur). Ray-marched
 // on a plane with orthographic rays and shaded with Phong on the gradient normal. The density
-// functions come first (runtime/tests/gallery_hypertexture.rs evaluates them on their own); the
+// functions come first (runtime/tests/gallery/hypertexture.rs evaluates them on their own); the
 // surface shader is last.
 #include <volume.sl>
 #include <lighting.sl>

@@ -6,7 +6,7 @@
 // the density gradient (PH L310-316) under the scene's lights. `variant` picks the density; `steps`
 // (samples across the bounding sphere's diameter) is the cost knob, and it sets the octave clamp
 // of the fractal ones (PH L308). The density functions come first (the tests evaluate them on
-// their own, runtime/tests/gallery_hypertexture.rs); the surface shader is last.
+// their own, runtime/tests/gallery/hypertexture.rs); the surface shader is last.
 #include <volume.sl>
 #include <lighting.sl>
 

@@ -28,7 +28,9 @@ surface planet(float Ka = 1; float Kd = 0.9; float Ks = 0.3; float roughness = 0
     float ice = smoothstep(icecap - 0.03, icecap + 0.03, abs(pn[2]) + 0.08 * e);
     c = mix(c, color(0.93, 0.95, 0.97), ice);
     wet *= 1 - ice;
-    normal Nf = faceforward(normalize(N), I);
+    // Not faceforward: on a closed ball N faces the eye wherever it is seen, and at the
+    // silhouette, where N . I is 0 to rounding, the two backends would flip it on different pixels.
+    normal Nf = normalize(N);
     vector V = -normalize(I);
     Oi = Os;
     Ci = c * (Ka * ambient() + Kd * diffuse(Nf)) + wet * Ks * specular(Nf, V, roughness);

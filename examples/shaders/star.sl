@@ -35,7 +35,9 @@ surface star(float Ka = 1; float Kd = 1;
              float rmin = 0.07; float rmax = 0.2; float saspect = 1;
              float samples = 1)
 {
-    normal Nf = faceforward(normalize(N), I);
+    // Not faceforward: on a closed ball N faces the eye wherever it is seen, and at the
+    // silhouette, where N . I is 0 to rounding, the two backends would flip it on different pixels.
+    normal Nf = normalize(N);
     float ss = (s - sctr) * saspect, tt = t - tctr;
     float n = max(1, floor(samples));
     float dsu = Du(ss) * du, dsv = Dv(ss) * dv, dtu = Du(tt) * du, dtv = Dv(tt) * dv;

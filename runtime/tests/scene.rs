@@ -177,7 +177,7 @@ fn unknown_fields_list_the_allowed_ones() {
     assert_eq!(
         error(&format!("[camra]\nfov = 3\n{CAMERA}")),
         "scenes/bad.toml:1:2: camra: unknown field `camra`; allowed fields: output, camera, light, object, \
-         quality"
+         quality, compare"
     );
     assert_eq!(
         error(&format!("{CAMERA}{OBJECT}{OBJECT}colour = [1, 1, 1]\n")),
@@ -351,6 +351,31 @@ fn quality_checks() {
     assert_eq!(
         quality("param = \"steps\"\nvalues = [1]\n"),
         "scenes/bad.toml:7:1: quality: missing field `reference`"
+    );
+}
+
+#[test]
+fn compare_sets_the_scenes_thresholds_with_a_reason() {
+    let parse = |body: &str| Scene::parse(&format!("{CAMERA}{OBJECT}[compare]\n{body}"), "s.toml", ".");
+    let scene = parse("hard_fail = 0.5\nreason = \"silhouettes\"\n").unwrap();
+    let t = scene.thresholds();
+    assert_eq!((t.fail, t.hard_fail, t.max_failing_fraction), (0.004, 0.5, 0.02));
+    assert_eq!(scene.compare.unwrap().reason, "silhouettes");
+    let plain = Scene::parse(&format!("{CAMERA}{OBJECT}"), "s.toml", ".").unwrap();
+    assert_eq!(plain.thresholds(), patina_runtime::image::Thresholds::default());
+    let compare = |body: &str| error(&format!("{CAMERA}{OBJECT}[compare]\n{body}"));
+    assert_eq!(compare("hard_fail = 0.5\n"), "scenes/bad.toml:7:1: compare: missing field `reason`");
+    assert_eq!(
+        compare("hard_fail = 0.5\nreason = \" \"\n"),
+        "scenes/bad.toml:9:10: compare.reason: say why the images may differ this much"
+    );
+    assert_eq!(
+        compare("fail = -1\nreason = \"x\"\n"),
+        "scenes/bad.toml:8:8: compare.fail: must be a finite number, at least 0"
+    );
+    assert_eq!(
+        compare("max_failing_fraction = 2\nreason = \"x\"\n"),
+        "scenes/bad.toml:8:24: compare.max_failing_fraction: must be a fraction, at most 1"
     );
 }
 

@@ -2,10 +2,11 @@
 //! field, and paths resolved against the scene's directory.
 
 use super::error::{Field, Locator, SceneError, field};
-use super::schema::{RawCamera, RawObject, RawOutput, RawQuality, RawScene, RawShader};
+use super::schema::{RawCamera, RawCompare, RawObject, RawOutput, RawQuality, RawScene, RawShader};
 use super::value::{RawMesh, TransformStep};
-use super::{DEFAULT_DETAIL, Light, MeshSource, Object, Output, Quality, Scene, ShaderRef};
+use super::{Compare, DEFAULT_DETAIL, Light, MeshSource, Object, Output, Quality, Scene, ShaderRef};
 use crate::camera::Camera;
+use crate::image::Thresholds;
 use crate::mesh::MAX_DETAIL;
 use glam::Vec3;
 use std::path::{Path, PathBuf};
@@ -23,7 +24,8 @@ pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> R
         .map(|(i, object)| self::object(object, &field(&["object"]).index(i), loc, base))
         .collect::<Result<Vec<_>, SceneError>>()?;
     let quality = raw.quality.as_ref().map(|q| quality(q, objects.len(), loc)).transpose()?;
-    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, quality })
+    let compare = raw.compare.as_ref().map(|c| compare(c, loc)).transpose()?;
+    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, quality, compare })
 }
 
 fn line(loc: &Locator, at: &Field) -> usize {
@@ -216,4 +218,30 @@ fn quality(raw: &RawQuality, objects: usize, loc: &Locator) -> Result<Quality, S
         None => None,
     };
     Ok(Quality { param: raw.param.clone(), object, values: raw.values.clone(), reference: raw.reference })
+}
+
+fn compare(raw: &RawCompare, loc: &Locator) -> Result<Compare, SceneError> {
+    let at = |name| field(&["compare", name]);
+    let defaults = Thresholds::default();
+    let get = |value: Option<f32>, default: f32, name: &'static str| match value {
+        None => Ok(default),
+        Some(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        Some(_) => Err(loc.invalid(&at(name), "must be a finite number, at least 0")),
+    };
+    let thresholds = Thresholds {
+        fail: get(raw.fail, defaults.fail, "fail")?,
+        hard_fail: get(raw.hard_fail, defaults.hard_fail, "hard_fail")?,
+        max_failing_fraction: get(
+            raw.max_failing_fraction,
+            defaults.max_failing_fraction,
+            "max_failing_fraction",
+        )?,
+    };
+    if thresholds.max_failing_fraction > 1.0 {
+        return Err(loc.invalid(&at("max_failing_fraction"), "must be a fraction, at most 1"));
+    }
+    if raw.reason.trim().is_empty() {
+        return Err(loc.invalid(&at("reason"), "say why the images may differ this much"));
+    }
+    Ok(Compare { thresholds, reason: raw.reason.trim().to_string() })
 }

@@ -43,6 +43,10 @@
 //! object = 0                   # which object's (default: every object whose shader has it)
 //! values = [8, 16, 32, 64, 128]
 //! reference = 512              # the setting the others are measured against
+//!
+//! [compare]                    # optional: how closely the GPU must match the CPU reference
+//! hard_fail = 0.5              # (fail, hard_fail, max_failing_fraction: default OSL's, see
+//! reason = "silhouettes"       #  image::Thresholds); the reason is required and shown
 //! ```
 //!
 //! Parameter values are numbers, arrays of numbers, strings or booleans ([`ParamValue`]); the
@@ -67,6 +71,7 @@ pub use error::{SceneError, SceneErrorKind};
 pub use value::{ParamValue, TransformStep};
 
 use crate::camera::Camera;
+use crate::image::Thresholds;
 use crate::mesh::{Mesh, MeshError};
 use error::Locator;
 use glam::Mat4;
@@ -91,6 +96,18 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// The knob that error-against-run-time sweeps vary, if the scene declares one.
     pub quality: Option<Quality>,
+    /// How closely the GPU must match the CPU reference, when the scene says (OSL's thresholds
+    /// otherwise: [`Scene::thresholds`]).
+    pub compare: Option<Compare>,
+}
+
+/// A scene's own image thresholds, with the reason they differ from OSL's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Compare {
+    /// The thresholds.
+    pub thresholds: Thresholds,
+    /// Why the two renderers may differ this much (shown beside the comparison).
+    pub reason: String,
 }
 
 /// Image settings.
@@ -254,6 +271,11 @@ impl Scene {
     /// Object `i`'s object-to-world matrix; the identity when there is no object `i`.
     pub fn object_transform(&self, i: usize) -> Mat4 {
         self.objects.get(i).map_or(Mat4::IDENTITY, Object::transform_matrix)
+    }
+
+    /// The thresholds the GPU's image must meet against the CPU reference's.
+    pub fn thresholds(&self) -> Thresholds {
+        self.compare.as_ref().map_or_else(Thresholds::default, |c| c.thresholds)
     }
 
     /// The image's width / height.

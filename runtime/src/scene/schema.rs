@@ -17,6 +17,7 @@ pub(crate) struct RawScene {
     #[serde(default)]
     pub object: Vec<RawObject>,
     pub quality: Option<RawQuality>,
+    pub compare: Option<RawCompare>,
 }
 
 #[derive(Deserialize)]
@@ -98,4 +99,13 @@ pub(crate) struct RawQuality {
     pub object: Option<i64>,
     pub values: Vec<f64>,
     pub reference: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawCompare {
+    pub fail: Option<f32>,
+    pub hard_fail: Option<f32>,
+    pub max_failing_fraction: Option<f32>,
+    pub reason: String,
 }

@@ -11,7 +11,7 @@
 //!
 //! Run with `--nocapture` to see the measured values.
 
-mod support;
+use crate::support;
 
 use patina_compiler::backend::cpu::{Binding, CpuProgram};
 use patina_compiler::syntax::preprocess::MemoryLoader;

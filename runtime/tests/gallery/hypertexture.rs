@@ -9,7 +9,7 @@
 //!
 //! Run with `--nocapture` to see the image comparisons.
 
-mod support;
+use crate::support;
 
 use patina_compiler::backend::cpu::{Binding, CpuProgram};
 use patina_compiler::syntax::preprocess::MemoryLoader;

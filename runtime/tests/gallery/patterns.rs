@@ -6,7 +6,7 @@
 //!
 //! Run with `--nocapture` to see the measured statistics.
 
-mod support;
+use crate::support;
 
 use patina_runtime::image::{Image, Thresholds, compare};
 use support::gallery::{at, both, covered, cpu, scene, set};

@@ -6,7 +6,7 @@
 //!
 //! Run with `--nocapture` to see the errors against the closed form and the fitted order.
 
-mod support;
+use crate::support;
 
 use patina_compiler::backend::cpu::{Binding, CpuProgram};
 use patina_compiler::syntax::preprocess::MemoryLoader;

@@ -3,7 +3,7 @@
 //! `volume_texture` (a texture3d volume marched through its cube). The flame of the same chapter
 //! is `examples/scenes/flame.toml`, tested in `render.rs`.
 
-mod support;
+use crate::support;
 
 use std::path::PathBuf;
 

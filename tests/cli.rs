@@ -276,3 +276,41 @@ fn gallery_renders_compares_and_writes_a_page() {
     let (size, _) = png_pixel(&images.join("flame.png"), 0, 0);
     assert_eq!(size, (160, 240));
 }
+
+#[test]
+fn explain_of_a_scene_says_what_binding_left_out_and_why() {
+    let dir = scratch("flags.sl", b"").parent().unwrap().to_path_buf();
+    std::fs::write(
+        dir.join("flags.sl"),
+        "surface flags(float use_tex = 0; string map = \"checker:4\"; float Kd = 0.8) {\n\
+           color c = Cs;\n\
+           if (use_tex > 0.5) { c *= color texture(map, s, t); }\n\
+           Ci = c * Kd;\n\
+           Oi = 1;\n\
+         }\n",
+    )
+    .unwrap();
+    let scene = dir.join("flags.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nfrom = [0, 0, -3]\nto = [0, 0, 0]\n[[object]]\nmesh = \"sphere\"\nshader = \"flags.sl\"\n\
+         params = { use_tex = 0, Kd = 0.5 }\nanimate = [\"Kd\"]\n",
+    )
+    .unwrap();
+    let out = patina(&["explain", scene.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("folded     `use_tex` = 0"), "{stdout}");
+    assert!(!stdout.contains("`Kd` ="), "Kd is animated, not folded: {stdout}");
+    assert!(
+        stdout.contains("flags.sl:3 is always false: the true side is gone (because of `use_tex`)"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("left out: checker:4 (sampled only by removed code)"), "{stdout}");
+    let bytes: Vec<usize> = stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("WGSL bytes"))
+        .map(|l| l.split_whitespace().filter_map(|w| w.parse().ok()).collect())
+        .unwrap_or_default();
+    assert!(bytes.len() == 2 && bytes[0] < bytes[1], "bound WGSL is smaller than dynamic: {stdout}");
+}

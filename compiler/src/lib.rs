@@ -2,6 +2,7 @@
 //! CPU interpreter. See ARCHITECTURE.md at the repository root for the pipeline.
 
 pub mod backend;
+pub mod bind;
 pub mod diag;
 pub mod ir;
 pub mod opt;

@@ -1,4 +1,5 @@
-//! `patina explain`: what the compiler decided about each shader of a file.
+//! `patina explain`: what the compiler decided about each shader of a file (or, for a scene,
+//! `explain_scene.rs`).
 
 use std::process::ExitCode;
 
@@ -9,6 +10,9 @@ use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 use super::ExplainArgs;
 
 pub fn run(args: ExplainArgs) -> Result<ExitCode, String> {
+    if args.file.extension().is_some_and(|e| e == "toml") {
+        return super::explain_scene::run(&args.file);
+    }
     let name = args.file.to_string_lossy().into_owned();
     let text = match read_source_file(&args.file) {
         Ok(Some(text)) => text,

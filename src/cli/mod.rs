@@ -4,6 +4,7 @@ mod check;
 mod compile;
 mod eval;
 mod explain;
+mod explain_scene;
 mod gallery;
 mod progress;
 mod render;
@@ -25,7 +26,8 @@ pub struct Cli {
 enum Command {
     /// Check shader sources and print their diagnostics.
     Check(CheckArgs),
-    /// Print each shader's parameters and variables with their types, rates and stages.
+    /// Print each shader's parameters and variables with their types, rates and stages; for a
+    /// scene (.toml), what binding kept and left out of each object's shader, and why.
     Explain(ExplainArgs),
     /// Run a shader on the CPU interpreter at given points and print its outputs.
     Eval(EvalArgs),
@@ -134,7 +136,7 @@ pub struct EvalArgs {
 /// Arguments of `patina explain`.
 #[derive(clap::Args, Debug)]
 pub struct ExplainArgs {
-    /// The shader file.
+    /// The shader file, or a scene (.toml).
     file: PathBuf,
     /// A directory to search for `#include` files.
     #[arg(short = 'I', value_name = "DIR")]

@@ -17,6 +17,7 @@ use crate::image::Image;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
 pub use frame::Frame;
+pub use program::LoadedShader;
 pub use program::{LightProgram, SurfaceProgram};
 pub use progress::{Progress, Silent, Unit};
 
@@ -102,8 +103,28 @@ pub struct Prepared {
     pub supersample: u32,
 }
 
-/// Compiles every shader of `scene` and computes its parameters.
+/// How a scene's shaders are compiled.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Bind each shader to the parameter values the scene sets and does not animate, leaving out
+    /// what they make dead (the default); `false` keeps every parameter in the uniform block.
+    pub specialize: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options { specialize: true }
+    }
+}
+
+/// Compiles every shader of `scene`, bound to the values it fixes, and computes its parameters.
 pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
+    prepare_with(scene, Options::default())
+}
+
+/// As [`prepare`], compiled as `options` say.
+pub fn prepare_with(scene: &Scene, options: Options) -> Result<Prepared, RenderError> {
+    let specialize = options.specialize;
     let camera = scene.camera();
     let n = scene.output.supersample.max(1);
     let (width, height) = (scene.output.width * n, scene.output.height * n);
@@ -113,16 +134,16 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
     let light_spaces = program::light_spaces(&world_spaces);
     let mut lights = Vec::new();
     for light in &scene.lights {
-        let loaded = program::load(&light.shader, ShaderKind::Light, world_to_camera)?;
+        let loaded = program::load(&light.shader, ShaderKind::Light, world_to_camera, specialize)?;
         lights.push(program::light_program(loaded, &light_spaces)?);
     }
     let mut objects = Vec::new();
     for (i, o) in scene.objects.iter().enumerate() {
         let object_to_world = scene.object_transform(i);
         let spaces = program::spaces(world_to_camera, object_to_world, &camera, width, height);
-        let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera)?;
+        let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera, specialize)?;
         let displacement = match &o.displacement {
-            Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera)?),
+            Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera, specialize)?),
             None => None,
         };
         let object_to_camera = world_to_camera * object_to_world;

@@ -3,6 +3,10 @@
 //! the host program computes them: the scene's value or the default).
 
 use std::path::Path;
+use std::sync::Arc;
+
+use patina_compiler::bind::{Decision, Fixed};
+use patina_compiler::source::SourceMap;
 
 use glam::{Mat4, Vec3, Vec4};
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, SlotKind};
@@ -25,13 +29,19 @@ pub struct LoadedShader {
     pub strings: Vec<(String, String)>,
     /// Its numeric parameters from the scene, in "current" (camera) space.
     pub params: Vec<(String, Vec<f64>)>,
+    /// What binding folded, decided and removed (empty when compiled dynamic).
+    pub decisions: Vec<Decision>,
+    /// The sources it was read from, for naming the places in `decisions`.
+    pub sources: Arc<SourceMap>,
 }
 
-/// Reads, checks and differentiates the shader a scene refers to.
+/// Reads, checks and differentiates the shader a scene refers to; with `specialize`, first binds
+/// it to the parameter values the scene sets and does not animate (`patina_compiler::bind`).
 pub fn load(
     shader: &ShaderRef,
     kind: ShaderKind,
     world_to_camera: Mat4,
+    specialize: bool,
 ) -> Result<LoadedShader, RenderError> {
     let path = shader.path.as_path();
     let shown = path.display().to_string();
@@ -63,8 +73,15 @@ pub fn load(
         };
         return Err(RenderError::Input(format!("{shown}: {what}")));
     };
-    let mut shader_ir = found.clone();
-    patina_compiler::opt::prepare(&mut shader_ir);
+    let shader_ir = found;
+    for name in &shader.animate {
+        if !shader_ir.params.iter().any(|p| shader_ir.local(*p).name == name.as_str()) {
+            return Err(RenderError::Input(format!(
+                "{shown}: shader `{}` has no parameter `{name}` to animate",
+                shader_ir.name
+            )));
+        }
+    }
     let mut strings = Vec::new();
     let mut params = Vec::new();
     for (name, value) in &shader.params {
@@ -85,7 +102,25 @@ pub fn load(
             }
         }
     }
-    Ok(LoadedShader { shader: shader_ir, strings, params })
+    let (mut shader_ir, decisions) = if specialize {
+        let fixed: Vec<Fixed> = params
+            .iter()
+            .filter(|(name, _)| !shader.animate.contains(name))
+            .map(|(name, value)| Fixed { name: name.clone(), value: value.clone() })
+            .collect();
+        let bound = patina_compiler::bind::specialize(shader_ir, &fixed);
+        (bound.shader, bound.decisions)
+    } else {
+        (shader_ir.clone(), Vec::new())
+    };
+    patina_compiler::opt::prepare(&mut shader_ir);
+    Ok(LoadedShader {
+        shader: shader_ir,
+        strings,
+        params,
+        decisions,
+        sources: Arc::new(checked.sources.clone()),
+    })
 }
 
 fn kind_name(kind: ShaderKind) -> &'static str {

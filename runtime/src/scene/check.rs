@@ -114,13 +114,14 @@ fn camera(raw: &RawCamera, loc: &Locator) -> Result<Camera, SceneError> {
 }
 
 fn shader(raw: &RawShader, at: &Field, loc: &Locator, base: &Path) -> Result<ShaderRef, SceneError> {
-    shader_parts(&raw.shader, &raw.name, &raw.params, at, loc, base)
+    shader_parts(&raw.shader, &raw.name, &raw.params, &raw.animate, at, loc, base)
 }
 
 fn shader_parts(
     path: &str,
     name: &Option<String>,
     params: &std::collections::BTreeMap<String, super::ParamValue>,
+    animate: &[String],
     at: &Field,
     loc: &Locator,
     base: &Path,
@@ -141,9 +142,14 @@ fn shader_parts(
             ));
         }
         let path = PathBuf::from(format!("{}/{module}", patina_compiler::stdlib::PREFIX));
-        return Ok(ShaderRef { path, name: name.clone(), params: params.clone() });
+        return Ok(ShaderRef { path, name: name.clone(), params: params.clone(), animate: animate.to_vec() });
     }
-    Ok(ShaderRef { path: base.join(path), name: name.clone(), params: params.clone() })
+    Ok(ShaderRef {
+        path: base.join(path),
+        name: name.clone(),
+        params: params.clone(),
+        animate: animate.to_vec(),
+    })
 }
 
 fn object(raw: &RawObject, at: &Field, loc: &Locator, base: &Path) -> Result<Object, SceneError> {
@@ -158,7 +164,7 @@ fn object(raw: &RawObject, at: &Field, loc: &Locator, base: &Path) -> Result<Obj
         Some(d) => in_range(d, 1..=MAX_DETAIL, &at.key("detail"), loc)?,
         None => DEFAULT_DETAIL,
     };
-    let surface = shader_parts(&raw.shader, &raw.name, &raw.params, at, loc, base)?;
+    let surface = shader_parts(&raw.shader, &raw.name, &raw.params, &raw.animate, at, loc, base)?;
     let displacement =
         raw.displacement.as_ref().map(|d| shader(d, &at.key("displacement"), loc, base)).transpose()?;
     let colour = |value: Option<[f32; 3]>, name: &str| -> Result<[f32; 3], SceneError> {

@@ -29,6 +29,7 @@
 //! shader = "../shaders/plastic.sl"       # the surface shader
 //! name = "plastic"                       # (optional)
 //! params = { Kd = 0.8, roughness = 0.2, texturename = "grid.png", twosided = true }
+//! animate = ["roughness"]      # parameters kept dynamic (the others set here are compiled in)
 //! displacement = { shader = "../shaders/bumpy.sl", params = { Km = 0.05 } }   # (optional)
 //! color = [1.0, 0.5, 0.2]      # Cs (default white)
 //! opacity = [1, 1, 1]          # Os (default opaque)
@@ -132,6 +133,9 @@ pub struct ShaderRef {
     pub name: Option<String>,
     /// Parameter values by name; parameters not listed keep their defaults.
     pub params: BTreeMap<String, ParamValue>,
+    /// The parameters the scene animates: they stay in the uniform block, where the others the
+    /// scene sets are folded into the shader (DESIGN.md §4).
+    pub animate: Vec<String>,
 }
 
 /// A light source.

@@ -74,6 +74,8 @@ pub(crate) struct RawShader {
     pub name: Option<String>,
     #[serde(default)]
     pub params: BTreeMap<String, ParamValue>,
+    #[serde(default)]
+    pub animate: Vec<String>,
 }
 
 #[derive(Deserialize)]
@@ -85,6 +87,8 @@ pub(crate) struct RawObject {
     pub name: Option<String>,
     #[serde(default)]
     pub params: BTreeMap<String, ParamValue>,
+    #[serde(default)]
+    pub animate: Vec<String>,
     pub displacement: Option<RawShader>,
     pub color: Option<[f32; 3]>,
     pub opacity: Option<[f32; 3]>,

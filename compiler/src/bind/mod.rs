@@ -1,0 +1,84 @@
+//! Binding (DESIGN.md §4): a shader specialized for what a scene fixes. Parameters the scene fixes
+//! become constants (`fold.rs`), conditions that become constant decide their branches at compile
+//! time and the code nobody reads any more is dropped (`prune.rs`). What remains is a smaller
+//! shader with the same meaning for that binding; the split and both backends then leave out the
+//! uniforms, textures, varyings and functions it no longer reads.
+//!
+//! The values a specialized shader computes are bit for bit those of the unspecialized one: a
+//! fixed parameter becomes a literal of the value the uniform block would hold, and only
+//! conditions are evaluated here (in f64, as the host evaluates per-draw conditions), never the
+//! values they choose between.
+
+mod fold;
+mod prune;
+
+use crate::ir::Shader;
+use crate::source::Span;
+
+/// The value a scene fixes for one parameter: its components, in the language's order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fixed {
+    /// The parameter's name.
+    pub name: String,
+    /// Its value (one number for scalars, three for colours and points, ...).
+    pub value: Vec<f64>,
+}
+
+/// What binding decided or left out, and why: for `patina explain` and for tests.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Decision {
+    /// A parameter became a constant.
+    Folded {
+        /// The parameter.
+        name: String,
+        /// Its value.
+        value: Vec<f64>,
+    },
+    /// A conditional statement (or `?:`) was decided at compile time; the other side is gone.
+    Branch {
+        /// The condition.
+        condition: Span,
+        /// Which side remains.
+        taken: bool,
+        /// The fixed parameters the condition reads.
+        because: Vec<String>,
+    },
+    /// A loop whose condition is false from the start is gone.
+    Loop {
+        /// The condition.
+        condition: Span,
+        /// The fixed parameters the condition reads.
+        because: Vec<String>,
+    },
+    /// Stores into a variable that nothing reads any more are gone.
+    DeadVariable {
+        /// The variable.
+        name: String,
+        /// Where it was declared.
+        declared: Span,
+    },
+}
+
+/// A specialized shader and what binding decided.
+#[derive(Clone, Debug)]
+pub struct Bound {
+    /// The shader for this binding.
+    pub shader: Shader,
+    /// What was folded, decided and removed, in that order.
+    pub decisions: Vec<Decision>,
+}
+
+/// Specializes `shader` for the parameter values in `fixed` (names it does not declare, output
+/// parameters, parameters the shader writes and values of the wrong width are left dynamic).
+pub fn specialize(shader: &Shader, fixed: &[Fixed]) -> Bound {
+    let mut shader = shader.clone();
+    let (mut decisions, reads) = fold::substitute(&mut shader, fixed);
+    if !reads.is_empty() {
+        decisions.extend(prune::decide(&mut shader, &reads));
+        decisions.extend(prune::dead_stores(&mut shader));
+    }
+    Bound { shader, decisions }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,247 @@
+//! Branches decided by folded values, and the code nobody reads once they are gone.
+
+use rustc_hash::FxHashSet;
+
+use super::Decision;
+use super::fold::{Reads, Scalar, constant, constant_in};
+use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
+
+/// Decides every `if`, loop condition and `?:` whose condition is now constant.
+pub(super) fn decide(shader: &mut Shader, reads: &Reads) -> Vec<Decision> {
+    let mut decisions = Vec::new();
+    // `?:` first: a decided one becomes the side it takes (the expression keeps its id).
+    for i in 0..shader.exprs.len() {
+        if let ExprKind::Select(c, a, b) = shader.exprs[i].kind
+            && let Some(Scalar::Bool(taken)) = constant(shader, c)
+            && !fixed_reads(shader, c, reads).is_empty()
+        {
+            let chosen = if taken { a } else { b };
+            let kind = shader.expr(chosen).kind.clone();
+            shader.exprs[i].kind = kind;
+            let because = fixed_reads(shader, c, reads);
+            decisions.push(Decision::Branch { condition: shader.expr(c).span, taken, because });
+        }
+    }
+    let body = std::mem::take(&mut shader.body);
+    shader.body = block(shader, body, reads, &mut decisions);
+    decisions
+}
+
+fn block(shader: &Shader, stmts: Block, reads: &Reads, decisions: &mut Vec<Decision>) -> Block {
+    let mut out = Vec::with_capacity(stmts.len());
+    // The constant values just stored into whole locals, in straight-line code: what a `for`
+    // loop's counter holds when its condition is first tested.
+    let mut known: Vec<(crate::ir::LocalId, Scalar)> = Vec::new();
+    for stmt in stmts {
+        if let Stmt::Store { place: Place::Local(l), value, .. } = &stmt {
+            known.retain(|(k, _)| k != l);
+            if let Some(v) = constant(shader, *value) {
+                known.push((*l, v));
+            }
+            out.push(stmt);
+            continue;
+        }
+        let never_runs = match &stmt {
+            Stmt::Loop { cond: Some(cond), .. } => {
+                let first = |l: crate::ir::LocalId| known.iter().find(|(k, _)| *k == l).map(|(_, v)| *v);
+                constant_in(shader, *cond, &first) == Some(Scalar::Bool(false))
+                    && !fixed_reads(shader, *cond, reads).is_empty()
+            }
+            _ => false,
+        };
+        known.clear();
+        match stmt {
+            Stmt::If { cond, then, otherwise } => match constant(shader, cond) {
+                Some(Scalar::Bool(taken)) if !fixed_reads(shader, cond, reads).is_empty() => {
+                    let because = fixed_reads(shader, cond, reads);
+                    decisions.push(Decision::Branch { condition: shader.expr(cond).span, taken, because });
+                    let kept = if taken { then } else { otherwise };
+                    out.extend(block(shader, kept, reads, decisions));
+                }
+                _ => out.push(Stmt::If {
+                    cond,
+                    then: block(shader, then, reads, decisions),
+                    otherwise: block(shader, otherwise, reads, decisions),
+                }),
+            },
+            Stmt::Loop { cond: Some(cond), body, step, span } if never_runs => {
+                let because = fixed_reads(shader, cond, reads);
+                decisions.push(Decision::Loop { condition: shader.expr(cond).span, because });
+                let _ = (body, step, span);
+            }
+            Stmt::Loop { cond, body, step, span } => out.push(Stmt::Loop {
+                cond,
+                body: block(shader, body, reads, decisions),
+                step: block(shader, step, reads, decisions),
+                span,
+            }),
+            Stmt::Inline { function, body, span } => {
+                out.push(Stmt::Inline { function, body: block(shader, body, reads, decisions), span })
+            }
+            Stmt::Illuminance { args, body } => {
+                out.push(Stmt::Illuminance { args, body: block(shader, body, reads, decisions) })
+            }
+            Stmt::Emit { solar, args, body } => {
+                out.push(Stmt::Emit { solar, args, body: block(shader, body, reads, decisions) })
+            }
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// The fixed parameters expression `id` reads, sorted, each once.
+fn fixed_reads(shader: &Shader, id: ExprId, reads: &Reads) -> Vec<String> {
+    let mut names = Vec::new();
+    let mut stack = vec![id];
+    while let Some(e) = stack.pop() {
+        if let Some(name) = reads.get(&e) {
+            names.push(name.clone());
+        }
+        shader.expr(e).kind.for_each_operand(|o| stack.push(o));
+    }
+    names.sort();
+    names.dedup();
+    names
+}
+
+/// Removes the stores into variables that nothing reads (after the decisions above, the
+/// variables only the removed branches read). Outputs, the result and predefined variables are
+/// always read; so are the parameters, whose values the host reports.
+pub(super) fn dead_stores(shader: &mut Shader) -> Vec<Decision> {
+    let live = live_locals(shader);
+    let mut removed: FxHashSet<LocalId> = FxHashSet::default();
+    let body = std::mem::take(&mut shader.body);
+    shader.body = sweep(body, &live, &mut removed);
+    let mut ids: Vec<LocalId> = removed.into_iter().collect();
+    ids.sort_by_key(|l| l.0);
+    ids.into_iter()
+        .map(|l| Decision::DeadVariable {
+            name: shader.local(l).name.to_string(),
+            declared: shader.local(l).span,
+        })
+        .collect()
+}
+
+/// The locals whose value something reads, directly or through locals that are read.
+fn live_locals(shader: &Shader) -> FxHashSet<LocalId> {
+    let mut live: FxHashSet<LocalId> = FxHashSet::default();
+    for (i, l) in shader.locals.iter().enumerate() {
+        if matches!(l.kind, LocalKind::Param { .. }) || shader.result_local == Some(LocalId(i as u32)) {
+            live.insert(LocalId(i as u32));
+        }
+    }
+    // Reads that do not depend on what is stored: conditions, evaluations, stores into
+    // predefined variables, indices, defaults. Then, until nothing changes, the values stored
+    // into live locals.
+    let mut roots: Vec<ExprId> = Vec::new();
+    let mut stores: Vec<(LocalId, ExprId, Vec<ExprId>)> = Vec::new();
+    collect(&shader.body, &mut roots, &mut stores);
+    for l in &shader.locals {
+        if let LocalKind::Param { default: Some(d), .. } = l.kind {
+            roots.push(d);
+        }
+    }
+    let mut seen: FxHashSet<ExprId> = FxHashSet::default();
+    let mut pending = roots;
+    loop {
+        while let Some(e) = pending.pop() {
+            if !seen.insert(e) {
+                continue;
+            }
+            if let ExprKind::Local(l) = shader.expr(e).kind {
+                live.insert(l);
+            }
+            shader.expr(e).kind.for_each_operand(|o| pending.push(o));
+        }
+        let before = pending.len();
+        for (l, value, indices) in &stores {
+            if live.contains(l) {
+                pending.extend(
+                    std::iter::once(*value).chain(indices.iter().copied()).filter(|e| !seen.contains(e)),
+                );
+            }
+        }
+        if pending.len() == before {
+            return live;
+        }
+    }
+}
+
+/// Every expression read regardless of liveness, and every store into a local (its root, the
+/// value and the index expressions of its place).
+fn collect(block: &Block, roots: &mut Vec<ExprId>, stores: &mut Vec<(LocalId, ExprId, Vec<ExprId>)>) {
+    for stmt in block {
+        match stmt {
+            Stmt::Store { place, value, .. } => {
+                let mut indices = Vec::new();
+                let mut at = place;
+                while let Place::Index(inner, index) = at {
+                    indices.push(*index);
+                    at = inner;
+                }
+                match at {
+                    Place::Local(l) => stores.push((*l, *value, indices)),
+                    _ => {
+                        roots.push(*value);
+                        roots.extend(indices);
+                    }
+                }
+            }
+            Stmt::Eval(e) => roots.push(*e),
+            Stmt::If { cond, then, otherwise } => {
+                roots.push(*cond);
+                collect(then, roots, stores);
+                collect(otherwise, roots, stores);
+            }
+            Stmt::Loop { cond, body, step, .. } => {
+                roots.extend(cond.iter().copied());
+                collect(body, roots, stores);
+                collect(step, roots, stores);
+            }
+            Stmt::Inline { body, .. } => collect(body, roots, stores),
+            Stmt::Illuminance { args, body } | Stmt::Emit { args, body, .. } => {
+                roots.extend(args.iter().copied());
+                collect(body, roots, stores);
+            }
+            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+        }
+    }
+}
+
+/// The block without stores into dead locals (recording which ones lost stores).
+fn sweep(stmts: Block, live: &FxHashSet<LocalId>, removed: &mut FxHashSet<LocalId>) -> Block {
+    stmts
+        .into_iter()
+        .filter_map(|stmt| match stmt {
+            Stmt::Store { ref place, .. } => match place.root_local() {
+                Some(l) if !live.contains(&l) => {
+                    removed.insert(l);
+                    None
+                }
+                _ => Some(stmt),
+            },
+            Stmt::If { cond, then, otherwise } => Some(Stmt::If {
+                cond,
+                then: sweep(then, live, removed),
+                otherwise: sweep(otherwise, live, removed),
+            }),
+            Stmt::Loop { cond, body, step, span } => Some(Stmt::Loop {
+                cond,
+                body: sweep(body, live, removed),
+                step: sweep(step, live, removed),
+                span,
+            }),
+            Stmt::Inline { function, body, span } => {
+                Some(Stmt::Inline { function, body: sweep(body, live, removed), span })
+            }
+            Stmt::Illuminance { args, body } => {
+                Some(Stmt::Illuminance { args, body: sweep(body, live, removed) })
+            }
+            Stmt::Emit { solar, args, body } => {
+                Some(Stmt::Emit { solar, args, body: sweep(body, live, removed) })
+            }
+            other => Some(other),
+        })
+        .collect()
+}

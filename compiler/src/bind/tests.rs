@@ -1,0 +1,154 @@
+use super::*;
+use crate::ir::{ExprKind, Stmt};
+use crate::syntax::preprocess::MemoryLoader;
+
+fn shader(src: &str) -> Shader {
+    let checked = crate::check_source("bind.sl", src, &MemoryLoader::default());
+    let messages: Vec<String> =
+        checked.diagnostics.iter().map(|d| format!("{}: {}", d.code, d.message)).collect();
+    assert!(messages.is_empty(), "{messages:?}");
+    checked.program.shaders.into_iter().next().unwrap()
+}
+
+fn fixed(pairs: &[(&str, &[f64])]) -> Vec<Fixed> {
+    pairs.iter().map(|(n, v)| Fixed { name: n.to_string(), value: v.to_vec() }).collect()
+}
+
+/// The built-ins the body still calls (statements and every expression they reach).
+fn calls(shader: &Shader) -> Vec<String> {
+    fn walk(shader: &Shader, block: &[Stmt], out: &mut Vec<String>) {
+        let mut roots = Vec::new();
+        for s in block {
+            match s {
+                Stmt::Store { value, .. } => roots.push(*value),
+                Stmt::Eval(e) => roots.push(*e),
+                Stmt::If { cond, then, otherwise } => {
+                    roots.push(*cond);
+                    walk(shader, then, out);
+                    walk(shader, otherwise, out);
+                }
+                Stmt::Loop { body, step, .. } => {
+                    walk(shader, body, out);
+                    walk(shader, step, out);
+                }
+                Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                    walk(shader, body, out)
+                }
+                _ => {}
+            }
+        }
+        while let Some(e) = roots.pop() {
+            if let ExprKind::Builtin(b, _) = &shader.expr(e).kind {
+                out.push(b.name.to_string());
+            }
+            shader.expr(e).kind.for_each_operand(|o| roots.push(o));
+        }
+    }
+    let mut out = Vec::new();
+    walk(shader, &shader.body, &mut out);
+    out.sort();
+    out.dedup();
+    out
+}
+
+const FLAGS: &str =
+    "surface flags(float use_tex = 0; string map = \"checker\"; float wobble = 0; float Kd = 0.8) {
+    color c = Cs;
+    if (use_tex > 0.5) { c *= color texture(map, s, t); }
+    float w = wobble > 0.5 ? noise(P * 4) : 1;
+    Ci = c * Kd * w;
+}";
+
+#[test]
+fn a_fixed_flag_decides_its_branch_either_way() {
+    let original = shader(FLAGS);
+    assert!(calls(&original).contains(&"texture".to_string()));
+    let off = specialize(&original, &fixed(&[("use_tex", &[0.0]), ("wobble", &[0.0])]));
+    let left = calls(&off.shader);
+    assert!(!left.contains(&"texture".to_string()) && !left.iter().any(|c| c.contains("noise")), "{left:?}");
+    let branches: Vec<_> = off
+        .decisions
+        .iter()
+        .filter_map(|d| {
+            if let Decision::Branch { taken, because, .. } = d {
+                Some((*taken, because.clone()))
+            } else {
+                None
+            }
+        })
+        .collect();
+    assert_eq!(branches, [(false, vec!["wobble".to_string()]), (false, vec!["use_tex".to_string()])]);
+    let on = specialize(&original, &fixed(&[("use_tex", &[1.0])]));
+    assert!(calls(&on.shader).contains(&"texture".to_string()));
+    // The noise's `?:` is still dynamic: wobble was not fixed.
+    assert!(
+        calls(&on.shader).iter().any(|c| c.contains("noise"))
+            || calls(&original).iter().all(|c| !c.contains("noise"))
+    );
+}
+
+#[test]
+fn values_are_substituted_not_computed() {
+    // Kd becomes the literal; `c * Kd * w` is left for the backends to compute as before.
+    let original = shader(FLAGS);
+    let bound = specialize(&original, &fixed(&[("Kd", &[0.5])]));
+    assert!(bound.decisions.contains(&Decision::Folded { name: "Kd".into(), value: vec![0.5] }));
+    let kd = bound.shader.params.iter().copied().find(|p| bound.shader.local(*p).name == "Kd").unwrap();
+    assert!(!bound.shader.exprs.iter().any(|e| matches!(e.kind, ExprKind::Local(l) if l == kd)));
+    assert!(bound.shader.exprs.iter().any(|e| e.kind == ExprKind::Literal(crate::ir::Literal::Float(0.5))));
+    // Nothing to decide: no branch reads Kd.
+    assert!(!bound.decisions.iter().any(|d| matches!(d, Decision::Branch { .. })));
+}
+
+#[test]
+fn names_it_cannot_fold_stay_dynamic() {
+    let original = shader("surface w(float k = 1; output varying float o = 0) { o = k; Ci = k; }");
+    let bound = specialize(&original, &fixed(&[("o", &[2.0]), ("nope", &[1.0]), ("k", &[1.0, 2.0])]));
+    assert!(bound.decisions.is_empty(), "{:?}", bound.decisions);
+}
+
+#[test]
+fn variables_only_a_removed_branch_read_lose_their_stores() {
+    let original = shader(
+        "surface d(float fancy = 0) {
+            float expensive = noise(P * 8);
+            float cheap = 0.5;
+            Ci = fancy > 0 ? expensive : cheap;
+        }",
+    );
+    let bound = specialize(&original, &fixed(&[("fancy", &[0.0])]));
+    assert!(calls(&bound.shader).iter().all(|c| !c.contains("noise")), "{:?}", calls(&bound.shader));
+    assert!(
+        bound
+            .decisions
+            .iter()
+            .any(|d| matches!(d, Decision::DeadVariable { name, .. } if name == "expensive")),
+        "{:?}",
+        bound.decisions
+    );
+    let kept = specialize(&original, &fixed(&[("fancy", &[1.0])]));
+    assert!(
+        calls(&kept.shader).iter().any(|c| c.contains("noise"))
+            || calls(&original).iter().all(|c| !c.contains("noise"))
+    );
+}
+
+#[test]
+fn a_loop_whose_condition_is_false_is_gone() {
+    let original = shader(
+        "surface l(float extra = 0) {
+            float sum = 0;
+            float i;
+            for (i = 0; i < extra; i += 1) { sum += noise(P * i); }
+            Ci = sum;
+        }",
+    );
+    let bound = specialize(&original, &fixed(&[("extra", &[0.0])]));
+    assert!(
+        bound
+            .decisions
+            .iter()
+            .any(|d| matches!(d, Decision::Loop { because, .. } if because == &["extra".to_string()]))
+    );
+    assert!(calls(&bound.shader).iter().all(|c| !c.contains("noise")));
+}

@@ -1,0 +1,177 @@
+//! Binding (DESIGN.md §4) through the whole pipeline: each thing a scene makes unnecessary is
+//! absent from the compiled naga module (the global, the argument, the code), and the picture is
+//! the one the unspecialized program draws. Needs a GPU adapter unless `PATINA_GPU=off`.
+
+use patina_runtime::image::{Image, Thresholds, compare};
+use patina_runtime::render::{self, Backend, Options, Prepared};
+use patina_runtime::scene::Scene;
+
+/// A surface shader with two option flags, a texture behind one, a vertex-rate value that only
+/// the other's branch reads, and a light loop.
+const FLAGS: &str =
+    "surface flags(float use_tex = 0; string map = \"checker:4\"; float detail = 0; float Kd = 0.8)
+{
+    color c = Cs;
+    float stripes = 0.5 + 0.5 * sin(40 * u);
+    if (use_tex > 0.5) {
+        c *= color texture(map, s, t);
+    }
+    if (detail > 0.5) {
+        c *= 0.5 + 0.5 * stripes * noise(P * 6);
+    }
+    normal Nf = normalize(N);
+    color lit = 0;
+    illuminance(P, Nf, PI / 2) {
+        lit += Cl * max(normalize(L) . Nf, 0);
+    }
+    Ci = c * Kd * (0.1 + lit);
+    Oi = 1;
+}
+";
+
+const LIGHT: &str = "[[light]]\nshader = \"<shaders.sl>\"\nname = \"distantlight\"\n\
+                     params = { intensity = 1.0, from = [-1.0, 1.0, -1.0], to = [0.0, 0.0, 0.0] }\n";
+
+/// A sphere shaded by FLAGS with `params`, under `lights` copies of a distant light.
+fn scene(params: &str, lights: usize) -> Scene {
+    let dir = std::env::temp_dir().join(format!("patina-bind-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("flags.sl"), FLAGS).unwrap();
+    let text = format!(
+        "[output]\nwidth = 40\nheight = 40\n[camera]\nfrom = [0.0, 0.0, -3.5]\nto = [0.0, 0.0, 0.0]\n\
+         {}[[object]]\nmesh = \"sphere\"\ndetail = 24\nshader = \"flags.sl\"\nparams = {{ {params} }}\n",
+        LIGHT.repeat(lights)
+    );
+    Scene::parse(&text, dir.join("flags.toml"), &dir).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn prepared(scene: &Scene, specialize: bool) -> Prepared {
+    render::prepare_with(scene, Options { specialize }).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The CPU reference's image and, with a GPU, the GPU's.
+fn images(p: &Prepared) -> Vec<Image> {
+    let mut out = vec![render::render(p, Backend::Cpu, None).unwrap()];
+    if let Some(gpu) = patina_runtime::gpu::for_tests() {
+        out.push(render::render(p, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{e}")));
+    }
+    out
+}
+
+/// Specialized and dynamic programs draw the same picture on each backend: bit for bit on the
+/// CPU (the same arithmetic in the same order); on the GPU within a few ulps, since the driver
+/// may fold differently once a value is a constant.
+fn assert_same_pictures(scene: &Scene) {
+    let (fixed, dynamic) = (images(&prepared(scene, true)), images(&prepared(scene, false)));
+    assert_eq!(fixed[0].pixels, dynamic[0].pixels, "CPU: the specialized picture differs");
+    if let (Some(a), Some(b)) = (fixed.get(1), dynamic.get(1)) {
+        let t = Thresholds { fail: 1e-6, hard_fail: 1e-5, max_failing_fraction: 0.0 };
+        let c = compare(a, b, &t).unwrap();
+        assert!(c.passes(&t), "GPU: the specialized picture differs: {c:?}");
+    }
+}
+
+/// The names of the module's global variables bound to a resource group (uniforms, textures).
+fn bound_globals(p: &Prepared) -> Vec<(u32, String)> {
+    let module = &p.objects[0].surface.gpu.module;
+    module
+        .global_variables
+        .iter()
+        .filter_map(|(_, g)| g.binding.as_ref().map(|b| (b.group, g.name.clone().unwrap_or_default())))
+        .collect()
+}
+
+/// How many expressions the module's functions hold in all: its size, the way naga counts.
+fn expressions(p: &Prepared) -> usize {
+    let module = &p.objects[0].surface.gpu.module;
+    module.functions.iter().map(|(_, f)| f.expressions.len()).sum::<usize>()
+        + module.entry_points.iter().map(|e| e.function.expressions.len()).sum::<usize>()
+}
+
+#[test]
+fn a_texture_behind_a_flag_fixed_off_is_not_bound() {
+    let off = scene("use_tex = 0, detail = 0", 1);
+    let (fixed, dynamic) = (prepared(&off, true), prepared(&off, false));
+    let textures = |p: &Prepared| bound_globals(p).into_iter().filter(|(g, _)| *g == 1).count();
+    assert!(textures(&dynamic) > 0, "the dynamic program binds the texture: {:?}", bound_globals(&dynamic));
+    assert_eq!(textures(&fixed), 0, "{:?}", bound_globals(&fixed));
+    assert!(fixed.objects[0].surface.gpu.interface.textures.is_empty());
+    assert!(fixed.objects[0].textures.is_empty(), "no texture is loaded for it either");
+    assert_same_pictures(&off);
+    // Fixed on, the texture stays.
+    let on = scene("use_tex = 1, detail = 0", 1);
+    assert!(textures(&prepared(&on, true)) > 0);
+    assert_same_pictures(&on);
+}
+
+#[test]
+fn a_flag_fixed_either_way_keeps_only_its_side() {
+    let off = prepared(&scene("detail = 0", 1), true);
+    let on = prepared(&scene("detail = 1", 1), true);
+    let dynamic = prepared(&scene("detail = 0", 1), false);
+    // The noise and the stripes are code only the `detail` branch has.
+    assert!(expressions(&off) < expressions(&on), "{} vs {}", expressions(&off), expressions(&on));
+    assert!(expressions(&on) <= expressions(&dynamic));
+    let wgsl = |p: &Prepared| p.objects[0].surface.gpu.wgsl().unwrap();
+    assert!(
+        wgsl(&on).contains("sin(") && !wgsl(&off).contains("sin("),
+        "the stripes' sine goes with the branch"
+    );
+    // Neither flag is in the specialized uniform block; the dynamic program reads them per draw.
+    let uniforms = |p: &Prepared| {
+        p.objects[0].surface.gpu.interface.uniforms.iter().map(|u| u.name.clone()).collect::<Vec<_>>()
+    };
+    assert!(
+        uniforms(&dynamic).len() > uniforms(&off).len(),
+        "{:?} vs {:?}",
+        uniforms(&dynamic),
+        uniforms(&off)
+    );
+    assert_same_pictures(&scene("detail = 0", 1));
+    assert_same_pictures(&scene("detail = 1", 1));
+}
+
+#[test]
+fn a_value_computed_per_vertex_for_a_removed_branch_is_not_carried() {
+    // `stripes` depends on u only: the vertex stage computes it and hands it to the fragment stage
+    // as a varying, unless the branch that reads it is gone.
+    let varyings = |p: &Prepared| p.objects[0].surface.gpu.interface.varyings.len();
+    let off = prepared(&scene("detail = 0", 1), true);
+    let dynamic = prepared(&scene("detail = 0", 1), false);
+    assert!(varyings(&off) < varyings(&dynamic), "{} vs {}", varyings(&off), varyings(&dynamic));
+}
+
+#[test]
+fn lights_are_unrolled_over_exactly_the_bound_ones() {
+    for lights in [0, 1, 3] {
+        let s = scene("detail = 0", lights);
+        let p = prepared(&s, true);
+        let module = &p.objects[0].surface.gpu.module;
+        let light_functions = module
+            .functions
+            .iter()
+            .filter(|(_, f)| f.name.as_deref().is_some_and(|n| n.starts_with("light")))
+            .count();
+        assert_eq!(light_functions, lights, "{lights} lights");
+        let light_uniforms =
+            p.objects[0].surface.gpu.interface.uniforms.iter().filter(|u| u.name.starts_with('l')).count();
+        assert_eq!(
+            light_uniforms == 0,
+            lights == 0,
+            "{lights} lights: {:?}",
+            p.objects[0].surface.gpu.interface.uniforms
+        );
+        assert_same_pictures(&s);
+    }
+}
+
+#[test]
+fn animated_parameters_stay_in_the_uniform_block() {
+    let base = scene("detail = 1, Kd = 0.6", 1);
+    let mut animated = base.clone();
+    animated.objects[0].surface.animate = vec!["detail".into()];
+    let a = prepared(&animated, true);
+    let f = prepared(&base, true);
+    assert!(expressions(&a) > expressions(&f), "the branch stays when detail is animated");
+    assert_eq!(images(&a)[0].pixels, images(&f)[0].pixels);
+}

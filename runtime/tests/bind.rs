@@ -175,3 +175,27 @@ fn animated_parameters_stay_in_the_uniform_block() {
     assert!(expressions(&a) > expressions(&f), "the branch stays when detail is animated");
     assert_eq!(images(&a)[0].pixels, images(&f)[0].pixels);
 }
+
+#[test]
+fn the_cache_recompiles_nothing_for_new_animated_values() {
+    let mut s = scene("detail = 1, Kd = 0.6", 1);
+    s.objects[0].surface.animate = vec!["Kd".into()];
+    let mut cache = render::Cache::new();
+    let first = render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!((cache.hits, cache.misses), (0, 2), "the light and the surface are compiled");
+    // A new value of the animated Kd: both programs come from the cache, and the picture is the
+    // one a fresh compile draws.
+    s.objects[0].surface.params.insert("Kd".into(), patina_runtime::scene::ParamValue::Number(0.3));
+    let again = render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!((cache.hits, cache.misses), (2, 2));
+    let fresh = prepared(&s, true);
+    assert_eq!(images(&again)[0].pixels, images(&fresh)[0].pixels);
+    assert_ne!(images(&again)[0].pixels, images(&first)[0].pixels, "Kd changed the picture");
+    if let (Some(a), Some(f)) = (images(&again).get(1), images(&fresh).get(1)) {
+        assert_eq!(a.pixels, f.pixels, "GPU");
+    }
+    // A new value of a fixed parameter is a new binding.
+    s.objects[0].surface.params.insert("detail".into(), patina_runtime::scene::ParamValue::Number(0.0));
+    render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!((cache.hits, cache.misses), (3, 3), "the light is found, the surface compiled");
+}

@@ -2,6 +2,7 @@
 //! or by the CPU reference ([`render`]). Both draw the same triangles with the same inputs, so
 //! their images can be compared pixel by pixel.
 
+mod cache;
 mod cpu;
 mod frame;
 mod gpu;
@@ -16,6 +17,7 @@ use crate::gpu::Gpu;
 use crate::image::Image;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
+pub use cache::Cache;
 pub use frame::Frame;
 pub use program::LoadedShader;
 pub use program::{LightProgram, SurfaceProgram};
@@ -124,6 +126,13 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, RenderError> {
 
 /// As [`prepare`], compiled as `options` say.
 pub fn prepare_with(scene: &Scene, options: Options) -> Result<Prepared, RenderError> {
+    prepare_cached(scene, options, &mut Cache::new())
+}
+
+/// As [`prepare_with`], taking compiled programs from `cache` where their binding is the same and
+/// keeping the ones it compiles there: preparing the scene again with new values of animated
+/// parameters (or with the same shader on several objects) compiles nothing.
+pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Result<Prepared, RenderError> {
     let specialize = options.specialize;
     let camera = scene.camera();
     let n = scene.output.supersample.max(1);
@@ -133,19 +142,25 @@ pub fn prepare_with(scene: &Scene, options: Options) -> Result<Prepared, RenderE
     let world_spaces = program::spaces(world_to_camera, Mat4::IDENTITY, &camera, width, height);
     let light_spaces = program::light_spaces(&world_spaces);
     let mut lights = Vec::new();
+    let mut light_keys = Vec::new();
     for light in &scene.lights {
-        let loaded = program::load(&light.shader, ShaderKind::Light, world_to_camera, specialize)?;
-        lights.push(program::light_program(loaded, &light_spaces)?);
+        let key = cache::light_key(&light.shader, world_to_camera, specialize);
+        let program = match cache.light(&key) {
+            Some(p) => p.clone(),
+            None => {
+                let loaded = program::load(&light.shader, ShaderKind::Light, world_to_camera, specialize)?;
+                let p = program::light_program(loaded, &light_spaces)?;
+                cache.keep_light(key.clone(), &p);
+                p
+            }
+        };
+        lights.push(program);
+        light_keys.push(key);
     }
     let mut objects = Vec::new();
     for (i, o) in scene.objects.iter().enumerate() {
         let object_to_world = scene.object_transform(i);
         let spaces = program::spaces(world_to_camera, object_to_world, &camera, width, height);
-        let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera, specialize)?;
-        let displacement = match &o.displacement {
-            Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera, specialize)?),
-            None => None,
-        };
         let object_to_camera = world_to_camera * object_to_world;
         let frame = Frame {
             object_to_camera,
@@ -160,7 +175,21 @@ pub fn prepare_with(scene: &Scene, options: Options) -> Result<Prepared, RenderE
                 [near, far]
             },
         };
-        let surface = program::surface_program(loaded, displacement, &lights, &frame)?;
+        let key =
+            cache::surface_key(&o.surface, o.displacement.as_ref(), &light_keys, world_to_camera, specialize);
+        let surface = match cache.surface(&key) {
+            Some(cached) => program::rebind_surface(cached, &o.surface, world_to_camera, &frame)?,
+            None => {
+                let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera, specialize)?;
+                let displacement = match &o.displacement {
+                    Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera, specialize)?),
+                    None => None,
+                };
+                let surface = program::surface_program(loaded, displacement, &lights, &frame)?;
+                cache.keep_surface(key, &surface);
+                surface
+            }
+        };
         let mesh = o
             .build_mesh()
             .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;

@@ -22,6 +22,7 @@ use super::frame::{Frame, UNIFORM_GLOBALS, global_value};
 use crate::scene::{ParamValue, ShaderRef};
 
 /// A checked shader and the source it came from (kept for rendering diagnostics).
+#[derive(Clone)]
 pub struct LoadedShader {
     /// The shader, differentiated.
     pub shader: Shader,
@@ -33,6 +34,65 @@ pub struct LoadedShader {
     pub decisions: Vec<Decision>,
     /// The sources it was read from, for naming the places in `decisions`.
     pub sources: Arc<SourceMap>,
+}
+
+/// The values a scene gives a shader's parameters: strings (texture and space names) and numbers,
+/// the latter in "current" (camera) space.
+#[allow(clippy::type_complexity)]
+pub fn scene_params(
+    shader_ir: &Shader,
+    shader: &ShaderRef,
+    world_to_camera: Mat4,
+) -> Result<(Vec<(String, String)>, Vec<(String, Vec<f64>)>), RenderError> {
+    let mut strings = Vec::new();
+    let mut params = Vec::new();
+    for (name, value) in &shader.params {
+        let Some(local) =
+            shader_ir.params.iter().map(|p| shader_ir.local(*p)).find(|l| l.name == name.as_str())
+        else {
+            return Err(RenderError::Input(format!(
+                "{}: shader `{}` has no parameter `{name}`",
+                shader.path.display(),
+                shader_ir.name
+            )));
+        };
+        match value {
+            ParamValue::String(s) => strings.push((name.clone(), s.clone())),
+            ParamValue::Bool(b) => params.push((name.clone(), vec![f64::from(u8::from(*b))])),
+            other => {
+                let numbers = other.as_numbers().unwrap_or(&[]).to_vec();
+                params.push((name.clone(), to_current(local.ty, numbers, world_to_camera)));
+            }
+        }
+    }
+    Ok((strings, params))
+}
+
+/// A compiled surface given new values of its animated parameters (`shader` is the scene's
+/// entry, whose other values the program was compiled for) and a new frame: the host part runs
+/// again, nothing is compiled.
+pub fn rebind_surface(
+    cached: &SurfaceProgram,
+    shader: &ShaderRef,
+    world_to_camera: Mat4,
+    frame: &Frame,
+) -> Result<SurfaceProgram, RenderError> {
+    let mut surface = cached.clone();
+    let (_, params) = scene_params(&surface.loaded.shader, shader, world_to_camera)?;
+    surface.loaded.params = params;
+    let host_outputs: Vec<String> = surface
+        .stages
+        .transfers
+        .iter()
+        .filter(|t| t.from == split::StageKind::Host)
+        .map(|t| t.name.to_string())
+        .collect();
+    surface.uniforms =
+        evaluate_params(&surface.host, &surface.loaded, &frame.spaces, Some(frame), &host_outputs)?;
+    if let Some(d) = &mut surface.displacement {
+        d.values = evaluate_params(&d.cpu, &d.loaded, &frame.spaces, Some(frame), &[])?;
+    }
+    Ok(surface)
 }
 
 /// Reads, checks and differentiates the shader a scene refers to; with `specialize`, first binds
@@ -82,26 +142,7 @@ pub fn load(
             )));
         }
     }
-    let mut strings = Vec::new();
-    let mut params = Vec::new();
-    for (name, value) in &shader.params {
-        let Some(local) =
-            shader_ir.params.iter().map(|p| shader_ir.local(*p)).find(|l| l.name == name.as_str())
-        else {
-            return Err(RenderError::Input(format!(
-                "{shown}: shader `{}` has no parameter `{name}`",
-                shader_ir.name
-            )));
-        };
-        match value {
-            ParamValue::String(s) => strings.push((name.clone(), s.clone())),
-            ParamValue::Bool(b) => params.push((name.clone(), vec![f64::from(u8::from(*b))])),
-            other => {
-                let numbers = other.as_numbers().unwrap_or(&[]).to_vec();
-                params.push((name.clone(), to_current(local.ty, numbers, world_to_camera)));
-            }
-        }
-    }
+    let (strings, params) = scene_params(shader_ir, shader, world_to_camera)?;
     let (mut shader_ir, decisions) = if specialize {
         let fixed: Vec<Fixed> = params
             .iter()
@@ -149,6 +190,7 @@ fn to_current(ty: Type, v: Vec<f64>, world_to_camera: Mat4) -> Vec<f64> {
 }
 
 /// A light bound to the scene, ready for both backends.
+#[derive(Clone)]
 pub struct LightProgram {
     /// The light shader.
     pub loaded: LoadedShader,
@@ -159,6 +201,7 @@ pub struct LightProgram {
 }
 
 /// A displacement shader bound to an object, ready for the CPU (the GPU module includes it).
+#[derive(Clone)]
 pub struct DisplacementProgram {
     /// The displacement shader.
     pub loaded: LoadedShader,
@@ -169,6 +212,7 @@ pub struct DisplacementProgram {
 }
 
 /// An object's surface, ready for both backends.
+#[derive(Clone)]
 pub struct SurfaceProgram {
     /// The surface shader (differentiated, whole).
     pub loaded: LoadedShader,
@@ -176,6 +220,8 @@ pub struct SurfaceProgram {
     pub stages: Stages,
     /// The GPU module and its interface.
     pub gpu: GpuProgram,
+    /// The interpreter's program for the host part (run once per draw for the uniforms).
+    pub host: CpuProgram,
     /// The interpreter's programs for the vertex and fragment stages.
     pub vertex: CpuProgram,
     /// See `vertex`.
@@ -248,7 +294,7 @@ pub fn surface_program(
         .map(|t| t.name.to_string())
         .collect();
     let uniforms = evaluate_params(&host, &loaded, spaces, Some(frame), &host_outputs)?;
-    Ok(SurfaceProgram { loaded, stages, gpu, vertex, fragment, uniforms, displacement })
+    Ok(SurfaceProgram { loaded, stages, gpu, host, vertex, fragment, uniforms, displacement })
 }
 
 /// Runs a program once with the scene's parameter values (and, for an object's programs, its

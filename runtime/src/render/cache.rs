@@ -1,0 +1,112 @@
+//! Compiled shaders by binding (DESIGN.md §4), so that preparing a scene again — with new values
+//! of its animated parameters, or the same shader on another object — compiles nothing.
+//!
+//! A surface's key is everything its compiled program depends on: the shader file (by path and
+//! text), which shader of it, the values binding compiles in (the parameters the scene sets and
+//! does not animate, its strings), its displacement, its lights (each by file, text, name and
+//! parameters), the camera (fixed points and vectors are compiled in camera space) and whether it
+//! is specialized. Files a shader includes are not part of the key: editing an included file
+//! needs a fresh cache.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use glam::Mat4;
+
+use super::program::{LightProgram, SurfaceProgram};
+use crate::scene::{ParamValue, ShaderRef};
+
+/// Compiled surfaces and lights, by key; see the module documentation.
+#[derive(Default)]
+pub struct Cache {
+    surfaces: HashMap<String, SurfaceProgram>,
+    lights: HashMap<String, LightProgram>,
+    /// How many programs were found compiled.
+    pub hits: usize,
+    /// How many programs had to be compiled.
+    pub misses: usize,
+}
+
+impl Cache {
+    /// An empty cache.
+    pub fn new() -> Cache {
+        Cache::default()
+    }
+
+    pub(super) fn surface(&mut self, key: &str) -> Option<&SurfaceProgram> {
+        let found = self.surfaces.get(key);
+        if found.is_some() {
+            self.hits += 1;
+        }
+        found
+    }
+
+    pub(super) fn keep_surface(&mut self, key: String, program: &SurfaceProgram) {
+        self.misses += 1;
+        self.surfaces.insert(key, program.clone());
+    }
+
+    pub(super) fn light(&mut self, key: &str) -> Option<&LightProgram> {
+        let found = self.lights.get(key);
+        if found.is_some() {
+            self.hits += 1;
+        }
+        found
+    }
+
+    pub(super) fn keep_light(&mut self, key: String, program: &LightProgram) {
+        self.misses += 1;
+        self.lights.insert(key, program.clone());
+    }
+}
+
+/// The part of a key that names one shader and the values compiled into it: every parameter the
+/// scene sets except `skip`ped (animated) ones.
+pub(super) fn shader_key(shader: &ShaderRef, skip: &[String]) -> String {
+    let text = std::fs::read_to_string(&shader.path).unwrap_or_default();
+    let mut key =
+        format!("{}#{}#{}|", shader.path.display(), shader.name.as_deref().unwrap_or(""), hash(&text));
+    for (name, value) in &shader.params {
+        // Strings (texture and space names) are compiled in even into a dynamic program.
+        if skip.contains(name) && !matches!(value, ParamValue::String(_)) {
+            continue;
+        }
+        let _ = match value {
+            ParamValue::Number(x) => write!(key, "{name}={x:?};"),
+            ParamValue::Numbers(v) => write!(key, "{name}={v:?};"),
+            ParamValue::String(s) => write!(key, "{name}={s:?};"),
+            ParamValue::Bool(b) => write!(key, "{name}={b};"),
+        };
+    }
+    key
+}
+
+/// The key of a light: the shader with all its values, and the camera.
+pub(super) fn light_key(shader: &ShaderRef, world_to_camera: Mat4, specialize: bool) -> String {
+    format!("{}|{:?}|{specialize}", shader_key(shader, &[]), world_to_camera.to_cols_array())
+}
+
+/// The key of a surface: see the module documentation.
+pub(super) fn surface_key(
+    surface: &ShaderRef,
+    displacement: Option<&ShaderRef>,
+    light_keys: &[String],
+    world_to_camera: Mat4,
+    specialize: bool,
+) -> String {
+    let skip = if specialize { surface.animate.clone() } else { surface.params.keys().cloned().collect() };
+    let mut key = shader_key(surface, &skip);
+    if let Some(d) = displacement {
+        let _ = write!(key, "|displacement {}", shader_key(d, &[]));
+    }
+    for l in light_keys {
+        let _ = write!(key, "|light {l}");
+    }
+    let _ = write!(key, "|{:?}|{specialize}", world_to_camera.to_cols_array());
+    key
+}
+
+/// FNV-1a: a short stand-in for a file's text in a key.
+fn hash(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}

@@ -13,62 +13,14 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, criterion_group, criterion_main};
 use patina_runtime::gpu::Gpu;
 use patina_runtime::render::{self, Backend, Options, Prepared};
-use patina_runtime::scene::Scene;
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
-/// Five feature flags, each behind its own branch: a texture, a noise-perturbed colour, an fBm bump
-/// of the normal, a specular lobe per light and a rim term. The scene turns on the specular only.
-const SHADER: &str = "#include <fractal.sl>
-surface features(float use_tex = 0; string map = \"checker:8\"; float detail = 0; float bump = 0;
-                 float specular = 1; float rim = 0; float Kd = 0.7; float Ks = 0.4; float roughness = 0.2)
-{
-    color c = Cs;
-    normal Nf = normalize(N);
-    if (use_tex > 0.5) { c *= color texture(map, s, t); }
-    if (detail > 0.5) { c *= 0.6 + 0.4 * fbm(transform(\"object\", P) * 4, 1, 2, 6); }
-    if (bump > 0.5) {
-        float h = fbm(transform(\"object\", P) * 8, 1, 2, 5);
-        Nf = normalize(calculatenormal(P + 0.02 * h * Nf));
-    }
-    vector V = -normalize(I);
-    color d = 0, sp = 0;
-    illuminance(P, Nf, PI / 2) {
-        vector Ln = normalize(L);
-        d += Cl * max(Ln . Nf, 0);
-        if (specular > 0.5) {
-            vector H = normalize(Ln + V);
-            sp += Cl * pow(max(Nf . H, 0), 1 / roughness);
-        }
-    }
-    color r = 0;
-    if (rim > 0.5) { r = color(0.3, 0.4, 0.6) * pow(1 - abs(Nf . V), 3); }
-    Ci = c * Kd * (0.05 + d) + Ks * sp + r;
-    Oi = 1;
-}
-";
+#[path = "support/features.rs"]
+mod features;
 
-fn scene(lights: usize) -> Scene {
-    let dir = std::env::temp_dir().join(format!("patina-bench-binding-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("features.sl"), SHADER).unwrap();
-    let mut text = String::from(
-        "[output]\nwidth = 96\nheight = 96\n[camera]\nfrom = [0.0, 0.5, -3.5]\nto = [0.0, 0.0, 0.0]\n",
-    );
-    for k in 0..lights {
-        let a = k as f32 * 0.8;
-        text += &format!(
-            "[[light]]\nshader = \"<shaders.sl>\"\nname = \"pointlight\"\n\
-             params = {{ intensity = 3.0, from = [{:.2}, 2.0, {:.2}] }}\n",
-            3.0 * a.cos(),
-            -3.0 * a.sin().abs() - 1.0
-        );
-    }
-    text += "[[object]]\nmesh = \"sphere\"\nshader = \"features.sl\"\n\
-             params = { use_tex = 0, detail = 0, bump = 0, specular = 1, rim = 0, Kd = 0.7, Ks = 0.4, roughness = 0.2 }\n";
-    Scene::parse(&text, dir.join("features.toml"), &dir).unwrap()
-}
+use features::scene;
 
 fn validate(p: &Prepared) {
     let module = &p.objects[0].surface.gpu.module;

@@ -199,3 +199,18 @@ fn the_cache_recompiles_nothing_for_new_animated_values() {
     render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
     assert_eq!((cache.hits, cache.misses), (3, 3), "the light is found, the surface compiled");
 }
+
+#[path = "../benches/support/features.rs"]
+mod features;
+
+#[test]
+fn the_benchmarks_specialized_program_draws_the_dynamic_picture() {
+    // Five flags fixed, eight lights: the specialized program is a fraction of the dynamic one
+    // (runtime/benches/binding.rs measures how much) and draws the same picture.
+    let s = features::scene(8);
+    let fixed = prepared(&s, true);
+    let dynamic = prepared(&s, false);
+    let bytes = |p: &Prepared| p.objects[0].surface.gpu.wgsl().unwrap().len();
+    assert!(bytes(&fixed) * 3 < bytes(&dynamic), "{} vs {} bytes", bytes(&fixed), bytes(&dynamic));
+    assert_same_pictures(&s);
+}

@@ -196,7 +196,7 @@ fn page(entries: &[Entry], args: &GalleryArgs, markdown: &Path, device: &str) ->
         "Times are the wall-clock time of one render at the size shown, on this page's last run \
          (a machine with {threads} CPU threads): **GPU** is wgpu on {device} (pipeline creation, \
          drawing and reading the image back; on lavapipe, compiling a large shader's pipeline \
-         dominates), **CPU** \
+         dominates, and Mesa's shader cache makes a second run faster than the first), **CPU** \
          is the CPU reference (the interpreter's vertex and fragment stages and the rasterizer), and \
          **compile** is compiling the scene's shaders for both backends. **max |Δ|** is the largest \
          difference of any channel of any pixel between the two images, **failing** the share of \

@@ -76,6 +76,10 @@ fn decisions_text(out: &mut String, decisions: &[Decision], sources: &SourceMap)
                 place(sources, *condition),
                 names(because)
             ),
+            Decision::UnconsumedOutput { name } => writeln!(
+                out,
+                "  removed    output `{name}`: the renderer does not read it (only Ci, Oi or the result)"
+            ),
             Decision::DeadVariable { name, declared } => writeln!(
                 out,
                 "  removed    `{name}` ({}): only removed code read it",

@@ -12,7 +12,7 @@
 mod fold;
 mod prune;
 
-use crate::ir::Shader;
+use crate::ir::{LocalKind, Shader};
 use crate::source::Span;
 
 /// The value a scene fixes for one parameter: its components, in the language's order.
@@ -50,6 +50,11 @@ pub enum Decision {
         /// The fixed parameters the condition reads.
         because: Vec<String>,
     },
+    /// An output parameter the caller does not consume: the code that only computed it is gone.
+    UnconsumedOutput {
+        /// The parameter.
+        name: String,
+    },
     /// Stores into a variable that nothing reads any more are gone.
     DeadVariable {
         /// The variable.
@@ -57,6 +62,25 @@ pub enum Decision {
         /// Where it was declared.
         declared: Span,
     },
+}
+
+/// Which of a shader's `output` parameters the caller reads back (RenderMan's arbitrary output
+/// values); the stores into the others are dead once nothing else reads them.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum Consumed<'a> {
+    /// Every output parameter (a caller that may read any of them).
+    All,
+    /// Only these (the renderer reads none: it consumes `Ci`, `Oi` or the result).
+    Only(&'a [&'a str]),
+}
+
+impl Consumed<'_> {
+    fn includes(&self, name: &str) -> bool {
+        match self {
+            Consumed::All => true,
+            Consumed::Only(names) => names.contains(&name),
+        }
+    }
 }
 
 /// A specialized shader and what binding decided.
@@ -69,13 +93,24 @@ pub struct Bound {
 }
 
 /// Specializes `shader` for the parameter values in `fixed` (names it does not declare, output
-/// parameters, parameters the shader writes and values of the wrong width are left dynamic).
-pub fn specialize(shader: &Shader, fixed: &[Fixed]) -> Bound {
+/// parameters, parameters the shader writes and values of the wrong width are left dynamic), for
+/// a caller that reads back the `consumed` output parameters.
+pub fn specialize(shader: &Shader, fixed: &[Fixed], consumed: Consumed) -> Bound {
     let mut shader = shader.clone();
     let (mut decisions, reads) = fold::substitute(&mut shader, fixed);
     if !reads.is_empty() {
         decisions.extend(prune::decide(&mut shader, &reads));
-        decisions.extend(prune::dead_stores(&mut shader));
+    }
+    let unconsumed: Vec<String> = shader
+        .params
+        .iter()
+        .map(|p| shader.local(*p))
+        .filter(|l| matches!(l.kind, LocalKind::Param { output: true, .. }) && !consumed.includes(&l.name))
+        .map(|l| l.name.to_string())
+        .collect();
+    if !reads.is_empty() || !unconsumed.is_empty() {
+        decisions.extend(unconsumed.iter().map(|name| Decision::UnconsumedOutput { name: name.clone() }));
+        decisions.extend(prune::dead_stores(&mut shader, &unconsumed));
     }
     Bound { shader, decisions }
 }

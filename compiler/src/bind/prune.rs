@@ -106,16 +106,17 @@ fn fixed_reads(shader: &Shader, id: ExprId, reads: &Reads) -> Vec<String> {
 }
 
 /// Removes the stores into variables that nothing reads (after the decisions above, the
-/// variables only the removed branches read). Outputs, the result and predefined variables are
-/// always read; so are the parameters, whose values the host reports.
-pub(super) fn dead_stores(shader: &mut Shader) -> Vec<Decision> {
-    let live = live_locals(shader);
+/// variables only the removed branches read). The result and predefined variables are always
+/// read; so are the parameters, whose values the host reports, except the `unconsumed` outputs.
+pub(super) fn dead_stores(shader: &mut Shader, unconsumed: &[String]) -> Vec<Decision> {
+    let live = live_locals(shader, unconsumed);
     let mut removed: FxHashSet<LocalId> = FxHashSet::default();
     let body = std::mem::take(&mut shader.body);
     shader.body = sweep(body, &live, &mut removed);
     let mut ids: Vec<LocalId> = removed.into_iter().collect();
     ids.sort_by_key(|l| l.0);
     ids.into_iter()
+        .filter(|l| !unconsumed.iter().any(|u| u == shader.local(*l).name.as_str()))
         .map(|l| Decision::DeadVariable {
             name: shader.local(l).name.to_string(),
             declared: shader.local(l).span,
@@ -124,10 +125,12 @@ pub(super) fn dead_stores(shader: &mut Shader) -> Vec<Decision> {
 }
 
 /// The locals whose value something reads, directly or through locals that are read.
-fn live_locals(shader: &Shader) -> FxHashSet<LocalId> {
+fn live_locals(shader: &Shader, unconsumed: &[String]) -> FxHashSet<LocalId> {
     let mut live: FxHashSet<LocalId> = FxHashSet::default();
     for (i, l) in shader.locals.iter().enumerate() {
-        if matches!(l.kind, LocalKind::Param { .. }) || shader.result_local == Some(LocalId(i as u32)) {
+        let param =
+            matches!(l.kind, LocalKind::Param { .. }) && !unconsumed.iter().any(|u| u == l.name.as_str());
+        if param || shader.result_local == Some(LocalId(i as u32)) {
             live.insert(LocalId(i as u32));
         }
     }

@@ -10,6 +10,11 @@ fn shader(src: &str) -> Shader {
     checked.program.shaders.into_iter().next().unwrap()
 }
 
+/// Specializes for a caller that reads every output parameter.
+fn specialize_all(shader: &Shader, fixed: &[Fixed]) -> Bound {
+    specialize(shader, fixed, Consumed::All)
+}
+
 fn fixed(pairs: &[(&str, &[f64])]) -> Vec<Fixed> {
     pairs.iter().map(|(n, v)| Fixed { name: n.to_string(), value: v.to_vec() }).collect()
 }
@@ -63,7 +68,7 @@ const FLAGS: &str =
 fn a_fixed_flag_decides_its_branch_either_way() {
     let original = shader(FLAGS);
     assert!(calls(&original).contains(&"texture".to_string()));
-    let off = specialize(&original, &fixed(&[("use_tex", &[0.0]), ("wobble", &[0.0])]));
+    let off = specialize_all(&original, &fixed(&[("use_tex", &[0.0]), ("wobble", &[0.0])]));
     let left = calls(&off.shader);
     assert!(!left.contains(&"texture".to_string()) && !left.iter().any(|c| c.contains("noise")), "{left:?}");
     let branches: Vec<_> = off
@@ -78,7 +83,7 @@ fn a_fixed_flag_decides_its_branch_either_way() {
         })
         .collect();
     assert_eq!(branches, [(false, vec!["wobble".to_string()]), (false, vec!["use_tex".to_string()])]);
-    let on = specialize(&original, &fixed(&[("use_tex", &[1.0])]));
+    let on = specialize_all(&original, &fixed(&[("use_tex", &[1.0])]));
     assert!(calls(&on.shader).contains(&"texture".to_string()));
     // The noise's `?:` is still dynamic: wobble was not fixed.
     assert!(
@@ -91,7 +96,7 @@ fn a_fixed_flag_decides_its_branch_either_way() {
 fn values_are_substituted_not_computed() {
     // Kd becomes the literal; `c * Kd * w` is left for the backends to compute as before.
     let original = shader(FLAGS);
-    let bound = specialize(&original, &fixed(&[("Kd", &[0.5])]));
+    let bound = specialize_all(&original, &fixed(&[("Kd", &[0.5])]));
     assert!(bound.decisions.contains(&Decision::Folded { name: "Kd".into(), value: vec![0.5] }));
     let kd = bound.shader.params.iter().copied().find(|p| bound.shader.local(*p).name == "Kd").unwrap();
     assert!(!bound.shader.exprs.iter().any(|e| matches!(e.kind, ExprKind::Local(l) if l == kd)));
@@ -103,7 +108,7 @@ fn values_are_substituted_not_computed() {
 #[test]
 fn names_it_cannot_fold_stay_dynamic() {
     let original = shader("surface w(float k = 1; output varying float o = 0) { o = k; Ci = k; }");
-    let bound = specialize(&original, &fixed(&[("o", &[2.0]), ("nope", &[1.0]), ("k", &[1.0, 2.0])]));
+    let bound = specialize_all(&original, &fixed(&[("o", &[2.0]), ("nope", &[1.0]), ("k", &[1.0, 2.0])]));
     assert!(bound.decisions.is_empty(), "{:?}", bound.decisions);
 }
 
@@ -116,7 +121,7 @@ fn variables_only_a_removed_branch_read_lose_their_stores() {
             Ci = fancy > 0 ? expensive : cheap;
         }",
     );
-    let bound = specialize(&original, &fixed(&[("fancy", &[0.0])]));
+    let bound = specialize_all(&original, &fixed(&[("fancy", &[0.0])]));
     assert!(calls(&bound.shader).iter().all(|c| !c.contains("noise")), "{:?}", calls(&bound.shader));
     assert!(
         bound
@@ -126,7 +131,7 @@ fn variables_only_a_removed_branch_read_lose_their_stores() {
         "{:?}",
         bound.decisions
     );
-    let kept = specialize(&original, &fixed(&[("fancy", &[1.0])]));
+    let kept = specialize_all(&original, &fixed(&[("fancy", &[1.0])]));
     assert!(
         calls(&kept.shader).iter().any(|c| c.contains("noise"))
             || calls(&original).iter().all(|c| !c.contains("noise"))
@@ -143,7 +148,7 @@ fn a_loop_whose_condition_is_false_is_gone() {
             Ci = sum;
         }",
     );
-    let bound = specialize(&original, &fixed(&[("extra", &[0.0])]));
+    let bound = specialize_all(&original, &fixed(&[("extra", &[0.0])]));
     assert!(
         bound
             .decisions
@@ -151,4 +156,33 @@ fn a_loop_whose_condition_is_false_is_gone() {
             .any(|d| matches!(d, Decision::Loop { because, .. } if because == &["extra".to_string()]))
     );
     assert!(calls(&bound.shader).iter().all(|c| !c.contains("noise")));
+}
+
+#[test]
+fn outputs_nobody_consumes_take_their_code_with_them() {
+    let original = shader(
+        "surface aov(output varying float depth_cue = 0; output varying color albedo = 0) {
+            float cue = noise(P * 3);
+            depth_cue = cue;
+            albedo = Cs;
+            Ci = Cs;
+        }",
+    );
+    let all = specialize(&original, &[], Consumed::All);
+    assert!(
+        calls(&all.shader).iter().any(|c| c.contains("noise"))
+            || calls(&original).iter().all(|c| !c.contains("noise"))
+    );
+    let renderer = specialize(&original, &[], Consumed::Only(&["albedo"]));
+    assert!(calls(&renderer.shader).iter().all(|c| !c.contains("noise")), "{:?}", calls(&renderer.shader));
+    assert!(renderer.decisions.contains(&Decision::UnconsumedOutput { name: "depth_cue".into() }));
+    assert!(
+        renderer.decisions.iter().any(|d| matches!(d, Decision::DeadVariable { name, .. } if name == "cue"))
+    );
+    assert!(
+        !renderer
+            .decisions
+            .iter()
+            .any(|d| matches!(d, Decision::UnconsumedOutput { name } if name == "albedo"))
+    );
 }

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use patina_compiler::bind::{Decision, Fixed};
+use patina_compiler::bind::{Consumed, Decision, Fixed};
 use patina_compiler::source::SourceMap;
 
 use glam::{Mat4, Vec3, Vec4};
@@ -149,7 +149,8 @@ pub fn load(
             .filter(|(name, _)| !shader.animate.contains(name))
             .map(|(name, value)| Fixed { name: name.clone(), value: value.clone() })
             .collect();
-        let bound = patina_compiler::bind::specialize(shader_ir, &fixed);
+        // The renderer reads back Ci, Oi or the result, never an output parameter.
+        let bound = patina_compiler::bind::specialize(shader_ir, &fixed, Consumed::Only(&[]));
         (bound.shader, bound.decisions)
     } else {
         (shader_ir.clone(), Vec::new())

@@ -314,3 +314,33 @@ fn explain_of_a_scene_says_what_binding_left_out_and_why() {
         .unwrap_or_default();
     assert!(bytes.len() == 2 && bytes[0] < bytes[1], "bound WGSL is smaller than dynamic: {stdout}");
 }
+
+#[test]
+fn compile_with_fixed_parameters_leaves_out_what_they_decide() {
+    let shader = scratch(
+        "fixable.sl",
+        b"surface fixable(float use_tex = 0; string map = \"grid.png\"; float Kd = 0.8) {\n\
+            color c = Cs;\n\
+            if (use_tex > 0.5) { c *= color texture(map, s, t); }\n\
+            Ci = c * Kd;\n\
+          }\n",
+    );
+    let dir = shader.parent().unwrap();
+    let (fixed, dynamic) = (dir.join("fixed"), dir.join("dynamic"));
+    let out =
+        patina(&["compile", shader.to_str().unwrap(), "--fix", "use_tex=0", "-o", fixed.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = patina(&["compile", shader.to_str().unwrap(), "-o", dynamic.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let read =
+        |d: &std::path::Path, ext: &str| std::fs::read_to_string(d.join(format!("fixable.{ext}"))).unwrap();
+    assert!(read(&dynamic, "json").contains("grid.png") && !read(&fixed, "json").contains("grid.png"));
+    assert!(read(&fixed, "wgsl").len() < read(&dynamic, "wgsl").len());
+    let out = patina(&["compile", shader.to_str().unwrap(), "--fix", "use_tex=on"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("expected NAME=V"), "{stderr}");
+    let out = patina(&["compile", shader.to_str().unwrap(), "--fix", "nope=1"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("has no parameter `nope`"));
+}

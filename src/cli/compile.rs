@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use patina_compiler::backend::wgsl::{self, BoundLight};
+use patina_compiler::bind::{Consumed, Fixed};
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
@@ -37,6 +38,20 @@ fn pick(shaders: &[Shader], kind: ShaderKind, name: Option<&str>, file: &Path) -
     })
 }
 
+/// `NAME=V` or `NAME=V,V,V`: a parameter's value to compile in.
+fn parse_fixed(spec: &str) -> Result<Fixed, String> {
+    let bad = || format!("`--fix {spec}`: expected NAME=V or NAME=V,V,V with numbers");
+    let (name, values) = spec.split_once('=').ok_or_else(bad)?;
+    let value = values
+        .split(',')
+        .map(|v| v.trim().parse::<f64>().map_err(|_| bad()))
+        .collect::<Result<Vec<_>, _>>()?;
+    if name.trim().is_empty() {
+        return Err(bad());
+    }
+    Ok(Fixed { name: name.trim().to_string(), value })
+}
+
 pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
     let shaders = load(&args.file, &args.include)?;
     let mut surface = pick(&shaders, ShaderKind::Surface, args.shader.as_deref(), &args.file)?;
@@ -52,6 +67,17 @@ pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
         let mut light = pick(&file_shaders, ShaderKind::Light, name.as_deref(), &path)?;
         patina_compiler::opt::prepare(&mut light);
         lights.push(light);
+    }
+    if !args.fix.is_empty() {
+        let fixed = args.fix.iter().map(|f| parse_fixed(f)).collect::<Result<Vec<_>, _>>()?;
+        for f in &fixed {
+            if !surface.params.iter().any(|p| surface.local(*p).name == f.name.as_str()) {
+                return Err(format!("`{}` has no parameter `{}` to fix", surface.name, f.name));
+            }
+        }
+        // Your program reads the output parameters it wants from the interface: keep them all.
+        let bound = patina_compiler::bind::specialize(&surface, &fixed, Consumed::All);
+        surface = bound.shader;
     }
     patina_compiler::opt::prepare(&mut surface);
     let stages = patina_compiler::split::split(&surface).map_err(|d| d.message)?;

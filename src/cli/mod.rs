@@ -65,6 +65,10 @@ pub struct CompileArgs {
     /// A light to bind: `NAME` (a light shader of FILE), `PATH` or `PATH:NAME` (repeat for more).
     #[arg(long, value_name = "LIGHT")]
     light: Vec<String>,
+    /// A parameter value to compile in (`NAME=V` or `NAME=V,V,V`; repeat for more): the branches
+    /// it decides and the code only they need are left out (the others stay uniforms).
+    #[arg(long, value_name = "NAME=V")]
+    fix: Vec<String>,
     /// Where to write NAME.wgsl and NAME.json.
     #[arg(short, long, value_name = "DIR", default_value = ".")]
     output: PathBuf,
@@ -93,6 +97,9 @@ pub struct RenderArgs {
     /// The renderer.
     #[arg(long, value_enum, default_value_t = BackendChoice::Gpu)]
     backend: BackendChoice,
+    /// Compile every parameter dynamic (as uniforms) instead of binding the scene's values.
+    #[arg(long)]
+    dynamic: bool,
 }
 
 /// Arguments of `patina eval`.

@@ -14,7 +14,8 @@ use super::{BackendChoice, RenderArgs};
 pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
     let scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
     let started = Instant::now();
-    let prepared = render::prepare(&scene).map_err(|e| e.to_string())?;
+    let options = render::Options { specialize: !args.dynamic };
+    let prepared = render::prepare_with(&scene, options).map_err(|e| e.to_string())?;
     let compiled = started.elapsed();
     let (backend, gpu) = match args.backend {
         BackendChoice::Cpu => (Backend::Cpu, None),

@@ -39,6 +39,10 @@ fn report(scene: &Scene, bound: &Prepared, dynamic: &Prepared) -> String {
     for (i, (b, d)) in bound.objects.iter().zip(&dynamic.objects).enumerate() {
         let _ = writeln!(out, "\nobject {i}: surface `{}`", b.surface.loaded.shader.name);
         decisions_text(&mut out, &b.surface.loaded.decisions, &b.surface.loaded.sources);
+        if let Some(d) = &b.surface.displacement {
+            let _ = writeln!(out, "  displacement `{}`:", d.loaded.shader.name);
+            decisions_text(&mut out, &d.loaded.decisions, &d.loaded.sources);
+        }
         sizes(&mut out, &b.surface, &d.surface);
         interface(&mut out, &b.surface, &d.surface);
     }

@@ -115,7 +115,9 @@ pub(super) fn dead_stores(shader: &mut Shader, unconsumed: &[String]) -> Vec<Dec
     shader.body = sweep(body, &live, &mut removed);
     let mut ids: Vec<LocalId> = removed.into_iter().collect();
     ids.sort_by_key(|l| l.0);
+    // The compiler's own temporaries (a discarded `x++`'s old value) go unreported.
     ids.into_iter()
+        .filter(|l| matches!(shader.local(*l).kind, LocalKind::Var))
         .filter(|l| !unconsumed.iter().any(|u| u == shader.local(*l).name.as_str()))
         .map(|l| Decision::DeadVariable {
             name: shader.local(l).name.to_string(),

@@ -34,7 +34,11 @@ const LIGHT: &str = "[[light]]\nshader = \"<shaders.sl>\"\nname = \"distantlight
 
 /// A sphere shaded by FLAGS with `params`, under `lights` copies of a distant light.
 fn scene(params: &str, lights: usize) -> Scene {
-    let dir = std::env::temp_dir().join(format!("patina-bind-{}", std::process::id()));
+    // A directory per scene: tests run in parallel, and one must not read a file another is
+    // rewriting.
+    static SCENES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = SCENES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("patina-bind-{}-{n}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("flags.sl"), FLAGS).unwrap();
     let text = format!(

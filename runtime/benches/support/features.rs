@@ -10,7 +10,7 @@ pub const SHADER: &str = include_str!("features.sl");
 
 /// The scene at 96×96 with `lights` point lights around the camera's side.
 pub fn scene(lights: usize) -> Scene {
-    let dir = std::env::temp_dir().join(format!("patina-features-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("patina-features-{}-{lights}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("features.sl"), SHADER).unwrap();
     let mut text = String::from(

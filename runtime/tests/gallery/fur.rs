@@ -17,7 +17,7 @@ use patina_compiler::backend::cpu::{Binding, CpuProgram};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Image, Thresholds};
 use std::f64::consts::PI;
-use support::gallery::{assert_finite, at, both, covered, cpu, scene, set};
+use support::gallery::{assert_finite, at, both, covered, cpu, scene, set, shader_source};
 
 type V3 = [f64; 3];
 
@@ -179,12 +179,6 @@ fn the_highlight_is_where_the_fibre_is_perpendicular_to_l_minus_e() {
 
 // ---------------------------------------------------------------------------------------------
 // The scene's shader on the interpreter: transmittance of a uniform slab (seed-digest H5)
-
-/// The source of `examples/shaders/NAME.sl`.
-fn shader_source(name: &str) -> String {
-    let path = format!("{}/../examples/shaders/{name}.sl", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
 
 /// The scene shader compiled with no lights: Oi is the march's opacity alone.
 fn fur_program() -> CpuProgram {

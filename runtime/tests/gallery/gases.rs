@@ -10,31 +10,12 @@
 
 use crate::support;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram};
-use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::Thresholds;
 use support::Rng;
-use support::gallery::{at, both, covered, scene, set};
+use support::gallery::{at, both, covered, program_named, scene, set, shader_source};
 
 // ---------------------------------------------------------------------------------------------
 // Shared helpers
-
-/// The source of `examples/shaders/NAME.sl`.
-fn shader_source(name: &str) -> String {
-    let path = format!("{}/../examples/shaders/{name}.sl", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
-
-/// Checks `source` and compiles its shader named `name` for the interpreter (support::program
-/// takes the first shader; the probes here follow the scene's shader in the same source).
-fn program_named(source: &str, name: &str) -> support::Program {
-    let checked = patina_compiler::check_source("gallery_gases_probe.sl", source, &MemoryLoader::default());
-    assert!(checked.diagnostics.is_empty(), "{:#?}", checked.diagnostics);
-    let shader = checked.program.shaders.into_iter().find(|s| s.name == name).expect("the probe shader");
-    let cpu = CpuProgram::compile(&shader, &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
-    support::Program { shader, cpu }
-}
 
 /// Flattens points into one input column.
 fn flat(points: &[[f64; 3]]) -> Vec<f64> {

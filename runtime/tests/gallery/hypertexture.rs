@@ -11,31 +11,17 @@
 
 use crate::support;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram};
-use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::Thresholds;
 use support::Rng;
-use support::gallery::{at, both, covered, scene, set};
+use support::gallery::{at, both, covered, program_named, scene, set, shader_source};
 
 // ---------------------------------------------------------------------------------------------
 // Shared helpers
 
-/// The source of `examples/shaders/NAME.sl`.
-fn shader_source(name: &str) -> String {
-    let path = format!("{}/../examples/shaders/{name}.sl", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
-
 /// The scene shader's source followed by `probe` (a surface shader named `probe` calling the
 /// scene's functions), checked and compiled for the interpreter.
 fn probe(scene_shader: &str, probe: &str) -> support::Program {
-    let source = format!("{}\n{probe}\n", shader_source(scene_shader));
-    let checked = patina_compiler::check_source("gallery_probe.sl", &source, &MemoryLoader::default());
-    assert!(checked.diagnostics.is_empty(), "{:#?}", checked.diagnostics);
-    let shader = checked.program.shaders.into_iter().find(|s| s.name == "probe").expect("the probe shader");
-    let cpu = CpuProgram::compile(&shader, &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
-    support::Program { shader, cpu }
+    program_named(&format!("{}\n{probe}\n", shader_source(scene_shader)), "probe")
 }
 
 /// Runs `program` on the interpreter in f64 and in f32: `[f64 outputs, f32 outputs]`.

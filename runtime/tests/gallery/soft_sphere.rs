@@ -8,30 +8,11 @@
 
 use crate::support;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram};
-use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Image, Thresholds};
-use support::gallery::{at, both, covered, cpu, scene, set};
+use support::gallery::{at, both, covered, cpu, program_named, scene, set, shader_source};
 
 // ---------------------------------------------------------------------------------------------
 // Shared helpers
-
-/// The source of `examples/shaders/NAME.sl`.
-fn shader_source(name: &str) -> String {
-    let path = format!("{}/../examples/shaders/{name}.sl", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
-
-/// Checks `source` and compiles its shader named `name` for the interpreter (support::program
-/// takes the first shader; the probes here follow the scene's shader in the same source).
-fn program_named(source: &str, name: &str) -> support::Program {
-    let checked = patina_compiler::check_source("gallery_probe.sl", source, &MemoryLoader::default());
-    assert!(checked.diagnostics.is_empty(), "{:#?}", checked.diagnostics);
-    let shader = checked.program.shaders.into_iter().find(|s| s.name == name).expect("the probe shader");
-    let cpu = CpuProgram::compile(&shader, &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
-    support::Program { shader, cpu }
-}
 
 /// Renders `scene` on the CPU only, with the knob `name` set to `value` on object 0.
 fn cpu_at(label: &str, mut s: patina_runtime::scene::Scene, name: &str, value: f64) -> Image {

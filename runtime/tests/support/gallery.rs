@@ -1,6 +1,8 @@
 //! Shared by the gallery tests (`runtime/tests/gallery*.rs`): a scene of `examples/scenes/` at a test
 //! size with parameter overrides, rendered on both backends and compared with the image thresholds.
 
+use patina_compiler::backend::cpu::{Binding, CpuProgram};
+use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Comparison, Image, Thresholds, compare};
 use patina_runtime::render::{self, Backend};
 use patina_runtime::scene::{ParamValue, Scene};
@@ -75,4 +77,22 @@ pub fn covered(image: &Image, background: [f32; 4]) -> f64 {
 /// The pixel at column `x`, row `y` (row 0 at the top).
 pub fn at(image: &Image, x: u32, y: u32) -> [f32; 4] {
     image.pixels[(y * image.width + x) as usize]
+}
+
+/// The source of `examples/shaders/NAME.sl`.
+pub fn shader_source(name: &str) -> String {
+    let path = format!("{}/../examples/shaders/{name}.sl", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// Checks `source` (which must have no diagnostics) and compiles its shader named `name` for the
+/// interpreter: a probe shader that follows a scene's shader in the same source and calls its
+/// functions (`super::program` takes the first shader).
+pub fn program_named(source: &str, name: &str) -> super::Program {
+    let checked = patina_compiler::check_source("gallery_probe.sl", source, &MemoryLoader::default());
+    assert!(checked.diagnostics.is_empty(), "{:#?}", checked.diagnostics);
+    let shader = checked.program.shaders.into_iter().find(|s| s.name == name).expect("the probe shader");
+    let cpu = CpuProgram::compile(&shader, &Binding::default())
+        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
+    super::Program { shader, cpu }
 }

@@ -13,6 +13,7 @@ pub(super) type Reads = FxHashMap<ExprId, String>;
 /// literals for a vector, colour or matrix. Returns what was folded and where.
 pub(super) fn substitute(shader: &mut Shader, fixed: &[Fixed]) -> (Vec<Decision>, Reads) {
     let stores = crate::ir::stores::stores(shader);
+    let places = output_args(shader);
     let mut decisions = Vec::new();
     let mut reads = Reads::default();
     for f in fixed {
@@ -33,7 +34,8 @@ pub(super) fn substitute(shader: &mut Shader, fixed: &[Fixed]) -> (Vec<Decision>
         }
         let users: Vec<usize> = (0..shader.exprs.len())
             .filter(|&i| {
-                matches!(shader.exprs[i].kind, ExprKind::Local(l) if l == p) && !is_output_arg(shader, i)
+                matches!(shader.exprs[i].kind, ExprKind::Local(l) if l == p)
+                    && !places.contains(&ExprId(i as u32))
             })
             .collect();
         for i in users {
@@ -64,15 +66,16 @@ pub(super) fn substitute(shader: &mut Shader, fixed: &[Fixed]) -> (Vec<Decision>
     (decisions, reads)
 }
 
-/// Whether expression `i` is an `output` argument of a built-in (a place, not a read).
-fn is_output_arg(shader: &Shader, i: usize) -> bool {
-    shader.exprs.iter().any(|e| match &e.kind {
-        ExprKind::Builtin(b, args) => args
-            .iter()
-            .enumerate()
-            .any(|(k, a)| a.0 as usize == i && b.param_type(k).is_some_and(|p| p.output)),
-        _ => false,
-    })
+/// The expressions that are `output` arguments of built-ins: places written, not reads.
+fn output_args(shader: &Shader) -> rustc_hash::FxHashSet<ExprId> {
+    let mut places = rustc_hash::FxHashSet::default();
+    for e in &shader.exprs {
+        if let ExprKind::Builtin(b, args) = &e.kind {
+            let outputs = args.iter().enumerate().filter(|(k, _)| b.param_type(*k).is_some_and(|p| p.output));
+            places.extend(outputs.map(|(_, a)| *a));
+        }
+    }
+    places
 }
 
 /// A literal of a scalar type from a scene's number.

@@ -12,13 +12,11 @@ pub(super) fn decide(shader: &mut Shader, reads: &Reads) -> Vec<Decision> {
     // `?:` first: a decided one becomes the side it takes (the expression keeps its id).
     for i in 0..shader.exprs.len() {
         if let ExprKind::Select(c, a, b) = shader.exprs[i].kind
-            && let Some(Scalar::Bool(taken)) = constant(shader, c)
-            && !fixed_reads(shader, c, reads).is_empty()
+            && let Some((taken, because)) = decided(shader, c, reads, &|_| None)
         {
             let chosen = if taken { a } else { b };
             let kind = shader.expr(chosen).kind.clone();
             shader.exprs[i].kind = kind;
-            let because = fixed_reads(shader, c, reads);
             decisions.push(Decision::Branch { condition: shader.expr(c).span, taken, because });
         }
     }
@@ -31,7 +29,7 @@ fn block(shader: &Shader, stmts: Block, reads: &Reads, decisions: &mut Vec<Decis
     let mut out = Vec::with_capacity(stmts.len());
     // The constant values just stored into whole locals, in straight-line code: what a `for`
     // loop's counter holds when its condition is first tested.
-    let mut known: Vec<(crate::ir::LocalId, Scalar)> = Vec::new();
+    let mut known: Vec<(LocalId, Scalar)> = Vec::new();
     for stmt in stmts {
         if let Stmt::Store { place: Place::Local(l), value, .. } = &stmt {
             known.retain(|(k, _)| k != l);
@@ -41,19 +39,18 @@ fn block(shader: &Shader, stmts: Block, reads: &Reads, decisions: &mut Vec<Decis
             out.push(stmt);
             continue;
         }
+        // A loop whose first test fails, given the counter's value stored just before it.
         let never_runs = match &stmt {
             Stmt::Loop { cond: Some(cond), .. } => {
-                let first = |l: crate::ir::LocalId| known.iter().find(|(k, _)| *k == l).map(|(_, v)| *v);
-                constant_in(shader, *cond, &first) == Some(Scalar::Bool(false))
-                    && !fixed_reads(shader, *cond, reads).is_empty()
+                let first = |l: LocalId| known.iter().find(|(k, _)| *k == l).map(|(_, v)| *v);
+                decided(shader, *cond, reads, &first).filter(|(runs, _)| !runs).map(|(_, because)| because)
             }
-            _ => false,
+            _ => None,
         };
         known.clear();
         match stmt {
-            Stmt::If { cond, then, otherwise } => match constant(shader, cond) {
-                Some(Scalar::Bool(taken)) if !fixed_reads(shader, cond, reads).is_empty() => {
-                    let because = fixed_reads(shader, cond, reads);
+            Stmt::If { cond, then, otherwise } => match decided(shader, cond, reads, &|_| None) {
+                Some((taken, because)) => {
                     decisions.push(Decision::Branch { condition: shader.expr(cond).span, taken, because });
                     let kept = if taken { then } else { otherwise };
                     out.extend(block(shader, kept, reads, decisions));
@@ -64,10 +61,9 @@ fn block(shader: &Shader, stmts: Block, reads: &Reads, decisions: &mut Vec<Decis
                     otherwise: block(shader, otherwise, reads, decisions),
                 }),
             },
-            Stmt::Loop { cond: Some(cond), body, step, span } if never_runs => {
-                let because = fixed_reads(shader, cond, reads);
+            Stmt::Loop { cond: Some(cond), .. } if never_runs.is_some() => {
+                let because = never_runs.unwrap_or_default();
                 decisions.push(Decision::Loop { condition: shader.expr(cond).span, because });
-                let _ = (body, step, span);
             }
             Stmt::Loop { cond, body, step, span } => out.push(Stmt::Loop {
                 cond,
@@ -88,6 +84,19 @@ fn block(shader: &Shader, stmts: Block, reads: &Reads, decisions: &mut Vec<Decis
         }
     }
     out
+}
+
+/// Condition `cond`'s value and the fixed parameters that decide it, when it is constant (with
+/// the locals `known` gives) and reads at least one fixed parameter.
+fn decided(
+    shader: &Shader,
+    cond: ExprId,
+    reads: &Reads,
+    known: &dyn Fn(LocalId) -> Option<Scalar>,
+) -> Option<(bool, Vec<String>)> {
+    let Some(Scalar::Bool(value)) = constant_in(shader, cond, known) else { return None };
+    let because = fixed_reads(shader, cond, reads);
+    (!because.is_empty()).then_some((value, because))
 }
 
 /// The fixed parameters expression `id` reads, sorted, each once.
@@ -194,23 +203,12 @@ fn collect(block: &Block, roots: &mut Vec<ExprId>, stores: &mut Vec<(LocalId, Ex
                 }
             }
             Stmt::Eval(e) => roots.push(*e),
-            Stmt::If { cond, then, otherwise } => {
-                roots.push(*cond);
-                collect(then, roots, stores);
-                collect(otherwise, roots, stores);
-            }
-            Stmt::Loop { cond, body, step, .. } => {
-                roots.extend(cond.iter().copied());
-                collect(body, roots, stores);
-                collect(step, roots, stores);
-            }
-            Stmt::Inline { body, .. } => collect(body, roots, stores),
-            Stmt::Illuminance { args, body } | Stmt::Emit { args, body, .. } => {
-                roots.extend(args.iter().copied());
-                collect(body, roots, stores);
-            }
-            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+            Stmt::If { cond, .. } => roots.push(*cond),
+            Stmt::Loop { cond, .. } => roots.extend(cond.iter().copied()),
+            Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => roots.extend(args.iter().copied()),
+            Stmt::Inline { .. } | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
         }
+        stmt.for_each_block(|b| collect(b, roots, stores));
     }
 }
 

@@ -27,20 +27,10 @@ fn calls(shader: &Shader) -> Vec<String> {
             match s {
                 Stmt::Store { value, .. } => roots.push(*value),
                 Stmt::Eval(e) => roots.push(*e),
-                Stmt::If { cond, then, otherwise } => {
-                    roots.push(*cond);
-                    walk(shader, then, out);
-                    walk(shader, otherwise, out);
-                }
-                Stmt::Loop { body, step, .. } => {
-                    walk(shader, body, out);
-                    walk(shader, step, out);
-                }
-                Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
-                    walk(shader, body, out)
-                }
+                Stmt::If { cond, .. } => roots.push(*cond),
                 _ => {}
             }
+            s.for_each_block(|b| walk(shader, b, out));
         }
         while let Some(e) = roots.pop() {
             if let ExprKind::Builtin(b, _) = &shader.expr(e).kind {

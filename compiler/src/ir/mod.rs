@@ -314,6 +314,25 @@ pub enum Stmt {
     },
 }
 
+impl Stmt {
+    /// Calls `f` with each block nested directly in this statement, in order (both sides of an
+    /// `if`, a loop's body then its step, the body of an inlined call or a light construct).
+    pub fn for_each_block(&self, mut f: impl FnMut(&Block)) {
+        match self {
+            Stmt::If { then, otherwise, .. } => {
+                f(then);
+                f(otherwise);
+            }
+            Stmt::Loop { body, step, .. } => {
+                f(body);
+                f(step);
+            }
+            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => f(body),
+            Stmt::Eval(_) | Stmt::Store { .. } | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+        }
+    }
+}
+
 /// A checked shader, with every function it calls inlined.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Shader {

@@ -51,18 +51,8 @@ fn walk(shader: &Shader, block: &Block, out: &mut [Stores]) {
                     }
                 }
             }
-            Stmt::If { then, otherwise, .. } => {
-                walk(shader, then, out);
-                walk(shader, otherwise, out);
-            }
-            Stmt::Loop { body, step, .. } => {
-                walk(shader, body, out);
-                walk(shader, step, out);
-            }
-            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
-                walk(shader, body, out)
-            }
-            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+            _ => {}
         }
+        stmt.for_each_block(|b| walk(shader, b, out));
     }
 }

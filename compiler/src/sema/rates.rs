@@ -206,7 +206,8 @@ impl Analysis<'_> {
                 }
                 Stmt::If { cond, then, otherwise } => {
                     let (inner, origin) = self.under(control, control_origin, *cond);
-                    let saved = self.enter(self.rate(*cond), self.shader.exprs[cond.0 as usize].span);
+                    let saved = self.inlined.clone();
+                    self.enter(self.rate(*cond), self.shader.exprs[cond.0 as usize].span);
                     self.block(then, inner, origin, in_light_loop);
                     self.block(otherwise, inner, origin, in_light_loop);
                     self.inlined = saved;
@@ -269,17 +270,15 @@ impl Analysis<'_> {
         }
     }
 
-    /// Joins a condition of rate `rate` (at `span`) into every inlined call's control; returns
-    /// the frames as they were, for the caller to restore when it leaves the condition.
-    fn enter(&mut self, rate: Rate, span: Span) -> Vec<(smol_str::SmolStr, Rate, Option<Span>)> {
-        let saved = self.inlined.clone();
+    /// Joins a condition of rate `rate` (at `span`) into every inlined call's control (the
+    /// caller restores the frames when it leaves the condition).
+    fn enter(&mut self, rate: Rate, span: Span) {
         for (_, control, origin) in &mut self.inlined {
             if rate.frequency > control.frequency {
                 *origin = Some(span);
             }
             *control = control.join(Rate { perlight: false, ..rate });
         }
-        saved
     }
 
     /// The control rate inside a statement conditioned on `cond`.

@@ -34,11 +34,7 @@ impl Cache {
     }
 
     pub(super) fn surface(&mut self, key: &str) -> Option<&SurfaceProgram> {
-        let found = self.surfaces.get(key);
-        if found.is_some() {
-            self.hits += 1;
-        }
-        found
+        found(&self.surfaces, key, &mut self.hits)
     }
 
     pub(super) fn keep_surface(&mut self, key: String, program: &SurfaceProgram) {
@@ -47,17 +43,20 @@ impl Cache {
     }
 
     pub(super) fn light(&mut self, key: &str) -> Option<&LightProgram> {
-        let found = self.lights.get(key);
-        if found.is_some() {
-            self.hits += 1;
-        }
-        found
+        found(&self.lights, key, &mut self.hits)
     }
 
     pub(super) fn keep_light(&mut self, key: String, program: &LightProgram) {
         self.misses += 1;
         self.lights.insert(key, program.clone());
     }
+}
+
+/// The program kept under `key`, counting a hit when there is one.
+fn found<'a, T>(programs: &'a HashMap<String, T>, key: &str, hits: &mut usize) -> Option<&'a T> {
+    let program = programs.get(key);
+    *hits += usize::from(program.is_some());
+    program
 }
 
 /// The part of a key that names one shader and the values compiled into it: every parameter the

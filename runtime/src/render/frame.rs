@@ -142,25 +142,8 @@ pub fn uniform_value(
     })
 }
 
-/// The uniform predefined variables the runtime gives a value.
-pub const UNIFORM_GLOBALS: [&str; 13] = [
-    "Cs",
-    "Os",
-    "time",
-    "dtime",
-    "E",
-    "clip",
-    "Ca",
-    "__ambient",
-    "__modelview",
-    "__invmodelview",
-    "__modelview3",
-    "__invmodelview3",
-    "__projection",
-];
-
 /// The value of the uniform predefined variable `name` for `frame`'s object, in the language's
-/// component order; `None` for a name that is not one of [`UNIFORM_GLOBALS`].
+/// component order; `None` for a predefined variable that is not uniform (`P`, `N`, ...).
 pub fn global_value(frame: &Frame, name: &str) -> Option<Vec<f64>> {
     let f64s = |v: &[f32]| v.iter().map(|x| f64::from(*x)).collect::<Vec<f64>>();
     // Stanford multiplies column vectors (`M * v`) and the language lists a matrix row by row,

@@ -18,7 +18,7 @@ use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
 use super::RenderError;
-use super::frame::{Frame, UNIFORM_GLOBALS, global_value};
+use super::frame::{Frame, global_value};
 use crate::scene::{ParamValue, ShaderRef};
 
 /// A checked shader and the source it came from (kept for rendering diagnostics).
@@ -80,13 +80,7 @@ pub fn rebind_surface(
     let mut surface = cached.clone();
     let (_, params) = scene_params(&surface.loaded.shader, shader, world_to_camera)?;
     surface.loaded.params = params;
-    let host_outputs: Vec<String> = surface
-        .stages
-        .transfers
-        .iter()
-        .filter(|t| t.from == split::StageKind::Host)
-        .map(|t| t.name.to_string())
-        .collect();
+    let host_outputs = host_outputs(&surface.stages);
     surface.uniforms =
         evaluate_params(&surface.host, &surface.loaded, &frame.spaces, Some(frame), &host_outputs)?;
     if let Some(d) = &mut surface.displacement {
@@ -288,14 +282,14 @@ pub fn surface_program(
     let host = compile(&stages.host)?;
     let vertex = compile(&stages.vertex)?;
     let fragment = compile(&stages.fragment)?;
-    let host_outputs: Vec<String> = stages
-        .transfers
-        .iter()
-        .filter(|t| t.from == split::StageKind::Host)
-        .map(|t| t.name.to_string())
-        .collect();
+    let host_outputs = host_outputs(&stages);
     let uniforms = evaluate_params(&host, &loaded, spaces, Some(frame), &host_outputs)?;
     Ok(SurfaceProgram { loaded, stages, gpu, host, vertex, fragment, uniforms, displacement })
+}
+
+/// The values the host part hands to the other stages, by name.
+fn host_outputs(stages: &Stages) -> Vec<String> {
+    stages.transfers.iter().filter(|t| t.from == split::StageKind::Host).map(|t| t.name.to_string()).collect()
 }
 
 /// Runs a program once with the scene's parameter values (and, for an object's programs, its
@@ -336,13 +330,13 @@ pub fn set_globals<F: patina_compiler::backend::cpu::scalar::Real>(
     program: &CpuProgram,
     frame: &Frame,
 ) {
-    for name in UNIFORM_GLOBALS {
-        if program.slot(name).is_some()
-            && let Some(value) = global_value(frame, name)
-        {
-            // `set` fails only on names the program lacks, which was just ruled out; a per-point
-            // input of that name (RenderMan's `Cs`) is given per point by the caller instead.
-            let _ = eval.set(name, &value);
+    let globals: Vec<String> =
+        program.slots().filter(|(_, s)| s.kind == SlotKind::Global).map(|(_, s)| s.name).collect();
+    for name in globals {
+        if let Some(value) = global_value(frame, &name) {
+            // `set` fails only on names the program lacks; a per-point input of that name
+            // (RenderMan's `Cs`) is given per point by the caller instead.
+            let _ = eval.set(&name, &value);
         }
     }
 }

@@ -318,3 +318,20 @@ fn render_path_named_spaces_and_composites() {
     let covered = cpu.pixels.iter().filter(|p| p[3] > 0.5).count();
     assert!(covered > cpu.pixels.len() / 3, "the plane covers only {covered} pixels");
 }
+
+#[test]
+fn integer_division_by_a_literal_zero() {
+    // naga rejects an integer `/` or `%` whose divisor is a constant zero (found by
+    // `generated.rs`: `(1 / 0)` in a shader did not validate); WGSL's values at run time, which
+    // the interpreter computes, are x / 0 = x and x % 0 = 0.
+    let Some(gpu) = gpu::for_tests() else { return };
+    let src =
+        "surface z(output varying float a = 0; output varying float b = 0; output varying float c = 0) {
+            int i = int(s * 8) - 3;
+            uint n = uint(t * 8);
+            a = float(i / 0) + float(7 / 0) * 10;
+            b = float(i % 0) + float((i + 5) % 0) + float(n % 0u);
+            c = float(n / 0u) + float(i / -0);
+        }";
+    run_shader(&gpu, src, &[], &[("a", tol::EXACT), ("b", tol::EXACT), ("c", tol::EXACT)]);
+}

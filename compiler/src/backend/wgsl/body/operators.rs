@@ -102,7 +102,22 @@ impl Translator<'_> {
         } else {
             (a, b)
         };
+        if matches!(op, B::Div | B::Rem) && self.is_integer_zero(b) {
+            // naga (as WGSL) rejects an integer division or remainder by a constant zero when the
+            // module is created, though it defines the value at run time: x / 0 = x, x % 0 = 0,
+            // the interpreter's rule. A literal zero divisor gets that value here.
+            return Ok(if matches!(op, B::Div) { a } else { self.binary(BinaryOperator::Subtract, a, a) });
+        }
         Ok(self.binary(bop, a, b))
+    }
+
+    /// Whether `v` is an integer literal zero (or one splatted).
+    fn is_integer_zero(&self, v: Value) -> bool {
+        match self.fb.f.expressions[v] {
+            Expression::Literal(NLit::I32(0) | NLit::U32(0)) => true,
+            Expression::Splat { value, .. } => self.is_integer_zero(value),
+            _ => false,
+        }
     }
 
     /// A comparison; vectors compare equal when every component does, unequal when any does.

@@ -8,3 +8,4 @@ pub mod mesh;
 pub mod raster;
 pub mod render;
 pub mod scene;
+pub mod sweep;

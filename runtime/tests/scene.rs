@@ -2,7 +2,9 @@
 //! line, column and field of its message.
 
 use glam::{Mat4, Vec3};
-use patina_runtime::scene::{MeshSource, ParamValue, Scene, SceneErrorKind, TransformStep};
+use patina_runtime::scene::{
+    Assignment, KnobKind, MeshSource, ParamValue, Reference, Scene, SceneErrorKind, Setting, TransformStep,
+};
 use std::f32::consts::FRAC_PI_6;
 use std::path::{Path, PathBuf};
 
@@ -53,9 +55,32 @@ fn the_full_example_reads_every_field() {
     assert_eq!(floor.transform.len(), 3);
     assert_eq!(floor.transform[1], TransformStep::Rotate { angle: 90.0, axis: [1.0, 0.0, 0.0] });
 
-    let quality = scene.quality.as_ref().unwrap();
-    assert_eq!((quality.param.as_str(), quality.object), ("ringscale", Some(1)));
-    assert_eq!((quality.values.clone(), quality.reference), (vec![2.0, 4.0, 8.0, 16.0], 64.0));
+    let [rings, antialias] = &scene.knobs[..] else { panic!("two knobs: {:?}", scene.knobs) };
+    assert_eq!((rings.name.as_str(), rings.kind), ("ringscale", KnobKind::Samples));
+    let ring = |value: f64| Assignment::Param { name: "ringscale".into(), object: Some(1), value };
+    let labels: Vec<&str> = rings.settings.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(labels, ["2", "4", "8", "16"]);
+    assert_eq!(rings.settings[3].assignments, [ring(16.0)]);
+    assert_eq!(
+        rings.reference,
+        Reference::Setting(Setting { label: "64".into(), assignments: vec![ring(64.0)] })
+    );
+    // A one-parameter knob takes any value; a knob of settings only its own labels.
+    assert_eq!(rings.setting("5").unwrap().assignments, [ring(5.0)]);
+    assert_eq!(rings.setting("lots"), None);
+    assert_eq!(antialias.settings[1].assignments[0], Assignment::Supersample(2));
+    assert_eq!(antialias.setting("5"), None);
+    assert_eq!(
+        antialias.reference,
+        Reference::Scene { path: dir.join("teapot.toml"), label: "exact".into() }
+    );
+    // Without `object`, a setting reaches the objects whose `params` set the parameter.
+    let supersampled = scene.with_setting(&antialias.settings[1]);
+    assert_eq!(supersampled.output.supersample, 2);
+    assert_eq!(supersampled.objects[1].surface.params["ringscale"], ParamValue::Number(10.0));
+    assert!(!supersampled.objects[0].surface.params.contains_key("ringscale"));
+    let fine = scene.with_setting(rings.setting("32").as_ref().unwrap());
+    assert_eq!(fine.objects[1].surface.params["ringscale"], ParamValue::Number(32.0));
 }
 
 #[test]
@@ -97,7 +122,7 @@ fn defaults_fill_a_minimal_scene() {
     assert_eq!(scene.output.background, [0.0, 0.0, 0.0, 1.0]);
     assert_eq!(scene.output.supersample, 1);
     assert_eq!((scene.camera.fov_y_degrees, scene.camera.near, scene.camera.far), (40.0, 0.1, 100.0));
-    assert!(scene.lights.is_empty() && scene.quality.is_none());
+    assert!(scene.lights.is_empty() && scene.knobs.is_empty());
     assert_eq!(scene.objects[0].surface.path, fixture("shaders/checker.sl"));
     assert_eq!(scene.objects[0].mesh, MeshSource::Teapot);
 }
@@ -177,7 +202,7 @@ fn unknown_fields_list_the_allowed_ones() {
     assert_eq!(
         error(&format!("[camra]\nfov = 3\n{CAMERA}")),
         "scenes/bad.toml:1:2: camra: unknown field `camra`; allowed fields: output, camera, light, object, \
-         quality, compare"
+         knob, compare"
     );
     assert_eq!(
         error(&format!("{CAMERA}{OBJECT}{OBJECT}colour = [1, 1, 1]\n")),
@@ -338,19 +363,48 @@ fn shader_paths_and_names() {
 }
 
 #[test]
-fn quality_checks() {
-    let quality = |body: &str| error(&format!("{CAMERA}{OBJECT}[quality]\n{body}"));
+fn knob_checks() {
+    let knob = |body: &str| error(&format!("{CAMERA}{OBJECT}params = {{ steps = 4 }}\n[[knob]]\n{body}"));
     assert_eq!(
-        quality("param = \"steps\"\nvalues = []\nreference = 3\n"),
-        "scenes/bad.toml:9:10: quality.values: at least one setting is needed"
+        knob("kind = \"steps\"\nparam = \"steps\"\nvalues = []\nreference = 3\n"),
+        "scenes/bad.toml:11:10: knob[0].values: at least one setting is needed"
     );
     assert_eq!(
-        quality("param = \"steps\"\nobject = 1\nvalues = [1]\nreference = 3\n"),
-        "scenes/bad.toml:9:10: quality.object: there is no object 1 (the scene has 1, numbered from 0)"
+        knob("kind = \"steps\"\nparam = \"steps\"\nobject = 1\nvalues = [1]\nreference = 3\n"),
+        "scenes/bad.toml:11:10: knob[0].object: there is no object 1 (the scene has 1, numbered from 0)"
     );
     assert_eq!(
-        quality("param = \"steps\"\nvalues = [1]\n"),
-        "scenes/bad.toml:7:1: quality: missing field `reference`"
+        knob("kind = \"steps\"\nparam = \"steps\"\nvalues = [1]\n"),
+        "scenes/bad.toml:8:1: knob[0]: missing field `reference`"
+    );
+    assert_eq!(
+        knob("kind = \"stepz\"\nparam = \"steps\"\nvalues = [1]\nreference = 3\n"),
+        "scenes/bad.toml:9:8: knob[0].kind: unknown kind `stepz`; expected steps, step_size, octaves, samples, \
+         antialias, table_size, step_phase, early_termination, shadow, noise"
+    );
+    assert_eq!(
+        knob("kind = \"steps\"\nparam = \"stride\"\nvalues = [1]\nreference = 3\n"),
+        "scenes/bad.toml:11:10: knob[0].values: no object's `params` set `stride` (set it on the objects the \
+         knob varies, or give `object`)"
+    );
+    assert_eq!(
+        knob(
+            "kind = \"samples\"\nname = \"aa\"\nsettings = [{ label = \"x\", set = { \"output.supersample\" = 40 } }]\nreference = 1\n"
+        ),
+        "scenes/bad.toml:11:59: knob[0].settings[0].set.output.supersample: output.supersample is a whole \
+         number in 1..=16"
+    );
+    assert_eq!(
+        knob(
+            "kind = \"samples\"\nname = \"aa\"\nsettings = [{ label = \"x\", set = { steps = 2 } }]\nreference = 1\n"
+        ),
+        "scenes/bad.toml:12:13: knob[0].reference: a knob with `settings` names its reference as a setting"
+    );
+    assert_eq!(
+        knob(
+            "kind = \"steps\"\nparam = \"steps\"\nsettings = [{ label = \"x\", set = { steps = 2 } }]\nreference = 1\n"
+        ),
+        "scenes/bad.toml:8:1: knob[0]: give either `param` with its `values`, or `settings`"
     );
 }
 

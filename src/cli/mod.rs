@@ -1,11 +1,13 @@
 //! Command-line arguments and the subcommands behind them.
 
+mod bench;
 mod check;
 mod compile;
 mod eval;
 mod explain;
 mod explain_scene;
 mod gallery;
+mod plot;
 mod progress;
 mod render;
 
@@ -38,6 +40,43 @@ enum Command {
     /// Render scenes on the GPU and the CPU reference, compare them, and write their pictures and
     /// a Markdown page with their timings.
     Gallery(GalleryArgs),
+    /// Error against run time: render a scene at each setting of its quality knobs on the GPU and
+    /// the CPU, time them and measure them against the reference; write CSV, Markdown and a plot.
+    Bench(BenchArgs),
+}
+
+/// Which renderers `patina bench` times.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Renderers {
+    /// The GPU (when there is one) and the CPU reference.
+    Both,
+    /// The GPU only.
+    Gpu,
+    /// The CPU reference only.
+    Cpu,
+}
+
+/// Arguments of `patina bench`.
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    /// The scene file (TOML), with its `[[knob]]` tables.
+    scene: PathBuf,
+    /// A knob to sweep: `NAME` (its listed settings) or `NAME=V,V,..` (those settings: labels, or
+    /// any numbers for a one-parameter knob). Repeat for more; default: every knob of the scene.
+    #[arg(long, value_name = "NAME[=V,..]")]
+    knob: Vec<String>,
+    /// Timed runs per setting and renderer, after one untimed warm-up; the median is reported.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    runs: u32,
+    /// The renderers to time.
+    #[arg(long, value_enum, default_value_t = Renderers::Both)]
+    backend: Renderers,
+    /// Render at WIDTHxHEIGHT instead of the scene's size (the reference too).
+    #[arg(long, value_name = "WxH")]
+    size: Option<String>,
+    /// Where to write SCENE_KNOB.csv, .md, .svg and .png.
+    #[arg(short, long, value_name = "DIR", default_value = "bench")]
+    output: PathBuf,
 }
 
 /// Arguments of `patina gallery`.
@@ -196,5 +235,6 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Compile(args) => compile::run(args),
         Command::Render(args) => render::run(args),
         Command::Gallery(args) => gallery::run(args),
+        Command::Bench(args) => bench::run(args),
     }
 }

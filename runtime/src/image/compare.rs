@@ -28,6 +28,8 @@ pub struct Comparison {
     pub max_error: f32,
     /// The mean channel difference over the finite pixels' channels (0 when there are none).
     pub mean_error: f32,
+    /// The root mean square of the channel differences over the same channels.
+    pub rms_error: f32,
     /// Pixels with some channel differing by more than `fail`.
     pub failing_pixels: usize,
     /// Pixels with some channel differing by more than `hard_fail`.
@@ -63,12 +65,13 @@ pub fn compare(a: &Image, b: &Image, t: &Thresholds) -> Result<Comparison, Image
     let mut c = Comparison {
         max_error: 0.0,
         mean_error: 0.0,
+        rms_error: 0.0,
         failing_pixels: 0,
         hard_failing_pixels: 0,
         pixels: a.pixels.len(),
         nan_pixels: 0,
     };
-    let mut sum = 0.0f64;
+    let (mut sum, mut squares) = (0.0f64, 0.0f64);
     let mut channels = 0usize;
     for (p, q) in a.pixels.iter().zip(&b.pixels) {
         if !p.iter().chain(q).all(|v| v.is_finite()) {
@@ -76,7 +79,10 @@ pub fn compare(a: &Image, b: &Image, t: &Thresholds) -> Result<Comparison, Image
             continue;
         }
         let worst = (0..4).map(|i| (p[i] - q[i]).abs()).fold(0.0f32, f32::max);
-        sum += (0..4).map(|i| f64::from((p[i] - q[i]).abs())).sum::<f64>();
+        // In f64, so that the differences of nearly equal references do not round away.
+        let d: [f64; 4] = std::array::from_fn(|i| f64::from(p[i]) - f64::from(q[i]));
+        sum += d.iter().map(|x| x.abs()).sum::<f64>();
+        squares += d.iter().map(|x| x * x).sum::<f64>();
         channels += 4;
         c.max_error = c.max_error.max(worst);
         c.failing_pixels += usize::from(worst > t.fail);
@@ -84,6 +90,7 @@ pub fn compare(a: &Image, b: &Image, t: &Thresholds) -> Result<Comparison, Image
     }
     if channels > 0 {
         c.mean_error = (sum / channels as f64) as f32;
+        c.rms_error = (squares / channels as f64).sqrt() as f32;
     }
     Ok(c)
 }
@@ -132,6 +139,9 @@ mod tests {
         assert_eq!(c.hard_failing_pixels, 1);
         assert!((c.max_error - 0.02).abs() < 1e-6);
         assert!((c.mean_error - 0.02 / 400.0).abs() < 1e-8);
+        // One channel of 400 off by 0.02 (in f32: 0.52 - 0.5 = 0.0200001).
+        let rms = (f64::from(0.52f32 - 0.5).powi(2) / 400.0).sqrt();
+        assert!((f64::from(c.rms_error) - rms).abs() < 1e-9, "{} vs {rms}", c.rms_error);
         assert!(!c.passes(&t));
         values[7] = f32::NAN;
         let c = compare(&image(&values), &reference, &t).unwrap();

@@ -2,9 +2,9 @@
 //! field, and paths resolved against the scene's directory.
 
 use super::error::{Field, Locator, SceneError, field};
-use super::schema::{RawCamera, RawCompare, RawObject, RawOutput, RawQuality, RawScene, RawShader};
+use super::schema::{RawCamera, RawCompare, RawObject, RawOutput, RawScene, RawShader};
 use super::value::{RawMesh, TransformStep};
-use super::{Compare, DEFAULT_DETAIL, Light, MeshSource, Object, Output, Quality, Scene, ShaderRef};
+use super::{Compare, DEFAULT_DETAIL, Light, MeshSource, Object, Output, Scene, ShaderRef};
 use crate::camera::Camera;
 use crate::image::Thresholds;
 use crate::mesh::MAX_DETAIL;
@@ -23,9 +23,9 @@ pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> R
     let objects = (raw.object.iter().enumerate())
         .map(|(i, object)| self::object(object, &field(&["object"]).index(i), loc, base))
         .collect::<Result<Vec<_>, SceneError>>()?;
-    let quality = raw.quality.as_ref().map(|q| quality(q, objects.len(), loc)).transpose()?;
+    let knobs = super::knob::knobs(&raw.knob, &objects, loc, base)?;
     let compare = raw.compare.as_ref().map(|c| compare(c, loc)).transpose()?;
-    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, quality, compare })
+    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, knobs, compare })
 }
 
 fn line(loc: &Locator, at: &Field) -> usize {
@@ -202,28 +202,6 @@ fn transform_step(step: &TransformStep, at: &Field, loc: &Locator) -> Result<(),
             Ok(())
         }
     }
-}
-
-fn quality(raw: &RawQuality, objects: usize, loc: &Locator) -> Result<Quality, SceneError> {
-    let at = |name| field(&["quality", name]);
-    if raw.param.trim().is_empty() {
-        return Err(loc.invalid(&at("param"), "the parameter name is empty"));
-    }
-    if raw.values.is_empty() {
-        return Err(loc.invalid(&at("values"), "at least one setting is needed"));
-    }
-    if raw.values.iter().chain([&raw.reference]).any(|x| !x.is_finite()) {
-        return Err(loc.invalid(&at("values"), "settings must be finite numbers"));
-    }
-    let object = match raw.object {
-        Some(i) if usize::try_from(i).is_ok_and(|i| i < objects) => Some(i as usize),
-        Some(i) => {
-            let message = format!("there is no object {i} (the scene has {objects}, numbered from 0)");
-            return Err(loc.invalid(&at("object"), message));
-        }
-        None => None,
-    };
-    Ok(Quality { param: raw.param.clone(), object, values: raw.values.clone(), reference: raw.reference })
 }
 
 fn compare(raw: &RawCompare, loc: &Locator) -> Result<Compare, SceneError> {

@@ -321,7 +321,9 @@ pub(crate) fn plain_message(message: &str) -> String {
     if let Some(rest) = message.strip_prefix("unknown variant ")
         && let Some((name, allowed)) = rest.split_once(", expected ")
     {
-        return format!("unknown transformation {name}; expected {}", plain_list(allowed));
+        // The scene's enumerations are the transformation steps and the knob kinds.
+        let what = if allowed.contains("`translate`") { "transformation" } else { "kind" };
+        return format!("unknown {what} {name}; expected {}", plain_list(allowed));
     }
     if message.starts_with("wanted exactly 1 element") {
         return "expected a table with exactly one key, e.g. { translate = [0, 1, 0] }".into();

@@ -1,4 +1,4 @@
-//! Scenes: TOML files naming a camera, lights, objects, output settings and a quality knob.
+//! Scenes: TOML files naming a camera, lights, objects, output settings and quality knobs.
 //!
 //! A complete scene, with every field (those marked "default" may be left out):
 //!
@@ -39,11 +39,24 @@
 //!     { scale = [2, 2, 2] },
 //! ]
 //!
-//! [quality]                    # optional: what `patina bench` sweeps
-//! param = "steps"              # a surface shader parameter
-//! object = 0                   # which object's (default: every object whose shader has it)
+//! [[knob]]                     # any number: what `patina bench` sweeps (error against time)
+//! kind = "steps"               # steps | step_size | octaves | samples | antialias | table_size |
+//!                              # step_phase | early_termination | shadow | noise
+//! param = "steps"              # a surface shader parameter; the knob is named after it unless
+//!                              # `name` is given
+//! object = 0                   # which object's (default: every object whose `params` set it)
 //! values = [8, 16, 32, 64, 128]
 //! reference = 512              # the setting the others are measured against
+//!
+//! [[knob]]                     # a knob whose settings assign several values
+//! name = "finish"
+//! kind = "antialias"
+//! settings = [
+//!     { label = "rough", set = { roughness = 0.4 } },
+//!     { label = "smooth", set = { roughness = 0.1, Kd = 0.5 } },
+//!     { label = "rough 4x4", set = { roughness = 0.4, "output.supersample" = 4 } },
+//! ]
+//! reference = { scene = "exact.toml", label = "exact" }   # or a setting { label, set }
 //!
 //! [compare]                    # optional: how closely the GPU must match the CPU reference
 //! hard_fail = 0.5              # (fail, hard_fail, max_failing_fraction: default OSL's, see
@@ -64,11 +77,13 @@
 
 mod check;
 mod error;
+mod knob;
 mod schema;
 mod value;
 
 pub(crate) use error::io_message;
 pub use error::{SceneError, SceneErrorKind};
+pub use knob::{Assignment, Knob, KnobKind, Reference, SUPERSAMPLE_KEY, Setting};
 pub use value::{ParamValue, TransformStep};
 
 use crate::camera::Camera;
@@ -95,8 +110,8 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// The objects, in file order.
     pub objects: Vec<Object>,
-    /// The knob that error-against-run-time sweeps vary, if the scene declares one.
-    pub quality: Option<Quality>,
+    /// The quality knobs that `patina bench` sweeps, in file order.
+    pub knobs: Vec<Knob>,
     /// How closely the GPU must match the CPU reference, when the scene says (OSL's thresholds
     /// otherwise: [`Scene::thresholds`]).
     pub compare: Option<Compare>,
@@ -212,19 +227,6 @@ impl Object {
     pub fn build_mesh(&self) -> Result<Mesh, MeshError> {
         self.mesh.build(self.detail)
     }
-}
-
-/// The knob an error-against-run-time sweep varies.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Quality {
-    /// A surface shader parameter.
-    pub param: String,
-    /// The object whose shader it is; `None` for every object whose shader declares it.
-    pub object: Option<usize>,
-    /// The settings to measure.
-    pub values: Vec<f64>,
-    /// The setting of the reference image.
-    pub reference: f64,
 }
 
 impl Scene {

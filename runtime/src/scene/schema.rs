@@ -2,6 +2,7 @@
 //! Integers that have a valid range are read as `i64` so that the range check, not the type,
 //! reports a negative value.
 
+use super::KnobKind;
 use super::value::{ParamValue, RawMesh, TransformStep};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -16,7 +17,8 @@ pub(crate) struct RawScene {
     pub light: Vec<RawShader>,
     #[serde(default)]
     pub object: Vec<RawObject>,
-    pub quality: Option<RawQuality>,
+    #[serde(default)]
+    pub knob: Vec<RawKnob>,
     pub compare: Option<RawCompare>,
 }
 
@@ -98,11 +100,38 @@ pub(crate) struct RawObject {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct RawQuality {
-    pub param: String,
+pub(crate) struct RawKnob {
+    pub name: Option<String>,
+    pub kind: KnobKind,
+    pub param: Option<String>,
     pub object: Option<i64>,
-    pub values: Vec<f64>,
-    pub reference: f64,
+    pub values: Option<Vec<f64>>,
+    pub settings: Option<Vec<RawSetting>>,
+    pub reference: RawReference,
+}
+
+/// One named setting of a knob: the parameter values (and `output.supersample`) it assigns.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSetting {
+    pub label: String,
+    pub set: BTreeMap<String, f64>,
+}
+
+/// A knob's reference: one of its parameter's values, a setting, or another scene.
+#[derive(Deserialize)]
+#[serde(untagged)]
+pub(crate) enum RawReference {
+    Value(f64),
+    Setting(RawSetting),
+    Scene(RawReferenceScene),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawReferenceScene {
+    pub scene: String,
+    pub label: Option<String>,
 }
 
 #[derive(Deserialize)]

@@ -30,7 +30,7 @@ fn banks_alone(width: u32, height: u32, keep: usize, place: usize) -> Scene {
     let mut object = s.objects[keep].clone();
     object.transform = transform;
     s.objects = vec![object];
-    s.quality = None;
+    s.knobs.clear(); // the knob names object 1, which is gone
     s
 }
 

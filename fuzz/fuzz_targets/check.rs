@@ -1,0 +1,84 @@
+//! The whole check pipeline on arbitrary text, then, for a program without errors, every shader
+//! through both backends the way the CLI and the renderer drive them: the interpreter's
+//! `CpuProgram::compile` for each, and for each surface shader the split and the WGSL module
+//! (validated by naga) with the file's lights and displacement bound. A backend may reject a
+//! program with a diagnostic; an internal error (E0799) on a program that checked clean is a bug,
+//! and so is a panic.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use patina_compiler::backend::cpu::{Binding, CpuProgram, LightBinding};
+use patina_compiler::backend::wgsl::{self, BoundLight};
+use patina_compiler::diag::{Code, Diagnostic};
+use patina_compiler::ir::Shader;
+use patina_compiler::syntax::ast::ShaderKind;
+use patina_compiler::syntax::preprocess::MemoryLoader;
+
+fn not_internal(stage: &str, d: &Diagnostic) {
+    assert!(d.code != Code::Internal, "{stage}: {}", d.message);
+}
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let checked = patina_compiler::check_source("fuzz.sl", text, &MemoryLoader::default());
+    let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
+    let _ = patina_compiler::diag::render_text(&checked.sources, &list);
+    if checked.has_errors() {
+        return;
+    }
+    let prepared: Vec<Shader> = checked
+        .program
+        .shaders
+        .iter()
+        .map(|s| {
+            let mut s = s.clone();
+            patina_compiler::opt::prepare(&mut s);
+            s
+        })
+        .collect();
+    let lights: Vec<&Shader> =
+        prepared.iter().filter(|s| s.kind == ShaderKind::Light && !s.stanford).collect();
+    let light_bindings: Vec<LightBinding> = lights
+        .iter()
+        .map(|l| LightBinding { ambient: wgsl::is_ambient(l), categories: Vec::new() })
+        .collect();
+    let bound: Vec<BoundLight> = lights
+        .iter()
+        .map(|s| BoundLight { shader: s, strings: Vec::new(), categories: Vec::new() })
+        .collect();
+    let displacement = prepared.iter().find(|s| s.kind == ShaderKind::Displacement).map(|s| BoundLight {
+        shader: s,
+        strings: Vec::new(),
+        categories: Vec::new(),
+    });
+    for shader in &prepared {
+        let lights = if shader.kind == ShaderKind::Surface { light_bindings.clone() } else { Vec::new() };
+        let binding = Binding { lights, strings: Vec::new() };
+        if let Err(d) = CpuProgram::compile(shader, &binding) {
+            not_internal("interpreter", &d);
+        }
+        if shader.kind != ShaderKind::Surface {
+            continue;
+        }
+        let stages = match patina_compiler::split::split(shader) {
+            Ok(stages) => stages,
+            Err(d) => {
+                not_internal("split", &d);
+                continue;
+            }
+        };
+        for part in [&stages.host, &stages.vertex, &stages.fragment] {
+            if let Err(d) = CpuProgram::compile(part, &binding) {
+                not_internal("interpreter (stage)", &d);
+            }
+        }
+        match wgsl::compile_object(&stages, displacement.as_ref(), &bound, &[]) {
+            Ok(program) => {
+                if let Err(d) = program.wgsl() {
+                    not_internal("WGSL writer", &d);
+                }
+            }
+            Err(d) => not_internal("WGSL backend", &d),
+        }
+    }
+});

@@ -400,6 +400,20 @@ fn recursion() {
 }
 
 #[test]
+fn inlining_too_deep() {
+    // Generated code: a chain of 70 functions, each calling the next (the limit is 64; the
+    // diagnostic's span and the size limit are tested in tests/limits.rs).
+    let mut src = String::from("float f70(float x) { return x; }\n");
+    for i in (0..70).rev() {
+        src.push_str(&format!("float f{i}(float x) {{ return f{}(x) + 1; }}\n", i + 1));
+    }
+    src.push_str("surface matte() { Ci = f0(1); }\n");
+    let (codes, text) = run(&src);
+    assert_eq!(codes, ["E0521"]);
+    assert!(text.contains("calls nested more than 64 deep"), "{text}");
+}
+
+#[test]
 fn overloads_may_call_each_other() {
     // Recursion is a definition calling itself, not a name: a library writes one overload in
     // terms of another.

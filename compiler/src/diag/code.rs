@@ -83,6 +83,8 @@ codes! {
     ExpansionLimit = "E0218",
     /// Extra tokens after a directive that takes none (warning).
     ExtraTokens = "E0219",
+    /// A source file, or a file with everything it includes, larger than the compiler accepts.
+    SourceTooLarge = "E0220",
 
     // Syntax.
     /// A token the grammar does not allow here.
@@ -113,7 +115,8 @@ codes! {
     InvalidLoopLevel = "E0313",
     /// `else` with no `if` before it.
     ElseWithoutIf = "E0314",
-    /// The source nests deeper than the compiler accepts (brackets, operator chains, `else` chains).
+    /// The source nests deeper than the compiler accepts (brackets, statements, operator chains,
+    /// `else` chains).
     ResourceLimit = "E0315",
 
     // Unsupported RenderMan features.
@@ -168,6 +171,8 @@ codes! {
     InvalidQualifier = "E0519",
     /// An assignment or `++` inside `?:`, `&&` or `||`, whose evaluation would change.
     EffectInCondition = "E0520",
+    /// Calls inlined too deeply, or a shader whose inlined code grows past the size limit.
+    InlineLimit = "E0521",
 
     // Rates.
     /// A value of a higher rate stored in a variable declared with a lower one.

@@ -1,7 +1,8 @@
 //! Bracket balance, checked before parsing: an unclosed `{` or a stray `)` is reported once, with
 //! the opener it fails to match, instead of as a cascade of parse errors. The same pass bounds how
 //! deep a tree the parser can build: brackets nest at most [`MAX_NESTING`] deep and a statement has
-//! at most [`MAX_OPERATORS`] operators, because later stages walk (and drop) the tree recursively.
+//! at most [`MAX_OPERATORS`] operators, and statements nest at most [`MAX_STATEMENT_DEPTH`] deep,
+//! because later stages walk (and drop) the tree recursively.
 
 use crate::diag::{Code, Diagnostic};
 use crate::syntax::lexer::Token;
@@ -15,10 +16,20 @@ pub const MAX_NESTING: usize = 256;
 /// deep as it is long.
 pub const MAX_OPERATORS: usize = 1024;
 
+/// Statements nested deeper than this are refused: blocks and the bodies of `if`, loops and light
+/// constructs, with or without braces. Later stages take time that grows faster than linearly with
+/// the depth (about 0.3 s to compile 256 levels in a debug build, ten seconds for 1000).
+pub const MAX_STATEMENT_DEPTH: usize = 256;
+
+/// The keywords whose statement contains another statement.
+fn nests_statement(kind: TokenKind) -> bool {
+    use TokenKind::*;
+    matches!(kind, If | While | For | Illuminance | Illuminate | Solar | Gather)
+}
+
 /// Tokens that can add a level to the tree: operators, and the keywords of nested statements.
 fn adds_depth(kind: TokenKind) -> bool {
-    use TokenKind::*;
-    kind.is_operator() || matches!(kind, If | While | For | Illuminance | Illuminate | Solar | Gather)
+    kind.is_operator() || nests_statement(kind)
 }
 
 fn closer_of(open: TokenKind) -> TokenKind {
@@ -41,11 +52,45 @@ pub fn check(tokens: &[Token]) -> Vec<Diagnostic> {
     let mut statement_start: Option<Token> = None;
     // `else` branches counted per brace level (the file level first).
     let mut elses: Vec<usize> = vec![0];
+    // Per brace level (the file level first), the statement keywords whose statement is still
+    // open there: `if (a) if (b) {` opens three levels. A `;` or `}` at that level ends them.
+    let mut statements: Vec<usize> = vec![0];
+    let mut statement_depth = 0usize;
     for &t in tokens {
+        // A `;` between parentheses (a `for` header) ends no statement.
+        let at_statement_level = open.last().is_none_or(|o| o.kind == TokenKind::LBrace);
         if t.kind == TokenKind::Semi {
             operators = 0;
             statement_start = None;
+            if at_statement_level {
+                let pending = statements.last_mut().expect("the file level is always there");
+                statement_depth -= *pending;
+                *pending = 0;
+            }
             continue;
+        }
+        if (nests_statement(t.kind) && at_statement_level) || t.kind == TokenKind::LBrace {
+            statement_depth += 1;
+            if t.kind != TokenKind::LBrace {
+                *statements.last_mut().expect("the file level is always there") += 1;
+            }
+            // Braces alone past the bracket limit get that limit's diagnostic, below.
+            let bracket_limit = t.kind == TokenKind::LBrace && open.len() >= MAX_NESTING;
+            if statement_depth > MAX_STATEMENT_DEPTH && !bracket_limit {
+                let mut d = Diagnostic::error(
+                    Code::ResourceLimit,
+                    format!("statements nested more than {MAX_STATEMENT_DEPTH} deep"),
+                    t.span,
+                    "nesting limit reached here",
+                );
+                if let Some(outer) = open.first() {
+                    d = d.with_label(outer.span, "the outermost block");
+                }
+                diags.push(
+                    d.with_help("combine conditions with `&&`, or move the inner statements into a function"),
+                );
+                return diags;
+            }
         }
         statement_start.get_or_insert(t);
         if t.kind == TokenKind::Else {
@@ -84,6 +129,7 @@ pub fn check(tokens: &[Token]) -> Vec<Diagnostic> {
             TokenKind::LParen | TokenKind::LBracket | TokenKind::LBrace => {
                 if t.kind == TokenKind::LBrace {
                     elses.push(0);
+                    statements.push(0);
                 }
                 open.push(t);
                 if open.len() > MAX_NESTING {
@@ -104,6 +150,11 @@ pub fn check(tokens: &[Token]) -> Vec<Diagnostic> {
                     open.pop();
                     if t.kind == TokenKind::RBrace {
                         elses.pop();
+                        // The block, and the statements around it at the enclosing level, end.
+                        let inner = statements.pop().expect("pushed with its `{`");
+                        let outer = statements.last_mut().expect("the file level is always there");
+                        statement_depth -= inner + 1 + *outer;
+                        *outer = 0;
                     }
                 }
                 Some(&o) => {

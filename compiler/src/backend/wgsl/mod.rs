@@ -33,6 +33,7 @@ use crate::diag::{Code, Diagnostic};
 use crate::ir::{Shader, Stmt};
 use crate::source::Span;
 use crate::split::Stages;
+pub use body::MAX_LOOP_ITERATIONS;
 use body::Translator;
 pub use entry::RANDOM_ROW;
 use interface::Interface;

@@ -15,6 +15,15 @@ use crate::sema::convert;
 use crate::source::Span;
 use crate::syntax::ast;
 
+/// Calls nested deeper than this (a function calling a function calling ...) are refused: every
+/// call is inlined, and later stages take time that grows faster than linearly with the depth.
+pub const MAX_INLINE_DEPTH: usize = 64;
+
+/// A shader whose body, with every call inlined, has more expressions than this is refused. The
+/// largest example shader (`noise_panel`) has about 30 000; a function calling another twice,
+/// thirty levels deep, would have 2^30 copies of the innermost one and stops here instead.
+pub const MAX_SHADER_EXPRESSIONS: usize = 500_000;
+
 /// A function that could be called: a user function or a built-in overload.
 #[derive(Copy, Clone)]
 enum Candidate<'a> {
@@ -169,7 +178,7 @@ impl Lowerer<'_> {
                 }
                 let args: Vec<Option<ExprId>> = lowered.into_iter().map(Some).collect();
                 let outer = locals.iter().find(|(_, g)| std::ptr::eq(&**g, f)).map(|(depth, _)| *depth);
-                Some(self.inline_call(f, &args, span, outer, in_library, out))
+                self.inline_call(f, &args, span, outer, in_library, out)
             }
             Candidate::Builtin(b) => {
                 match b.context {
@@ -233,7 +242,8 @@ impl Lowerer<'_> {
         }
     }
 
-    /// Inlines a call of `f` and returns the expression of its result.
+    /// Inlines a call of `f` and returns the expression of its result; `None` past the inlining
+    /// limits (reported).
     fn inline_call(
         &mut self,
         f: &ast::FunctionDef,
@@ -242,13 +252,54 @@ impl Lowerer<'_> {
         outer: Option<usize>,
         library: bool,
         out: &mut Block,
-    ) -> ExprId {
+    ) -> Option<ExprId> {
+        if !self.within_inline_limits(f, span) {
+            return None;
+        }
         let result = self.inline_body(f, args, span, outer, library, out);
-        match result {
+        Some(match result {
             Some(local) => self.push_expr(ExprKind::Local(local), declared_type(f.return_type, None), span),
             // A void call used as a statement: give the caller something to ignore.
             None => self.push_expr(ExprKind::Construct(Vec::new()), Type::VOID, span),
+        })
+    }
+
+    /// Whether a call of `f` at `span` may be inlined: reports [`MAX_INLINE_DEPTH`] at the call
+    /// that crosses it, and [`MAX_SHADER_EXPRESSIONS`] once per shader (every later call is
+    /// refused too, so that an exponential call tree stops at the limit).
+    fn within_inline_limits(&mut self, f: &ast::FunctionDef, span: Span) -> bool {
+        if self.exprs.len() > MAX_SHADER_EXPRESSIONS {
+            if !std::mem::replace(&mut self.inline_limit_reported, true) {
+                self.error(
+                    Diagnostic::error(
+                        Code::InlineLimit,
+                        format!(
+                            "with its calls inlined, the shader grows past {MAX_SHADER_EXPRESSIONS} expressions"
+                        ),
+                        span,
+                        format!("inlining this call of `{}` crosses the limit", f.name.name),
+                    )
+                    .with_note("every call inlines a copy of the function's body: a function that calls another twice, nested 20 deep, makes a million copies")
+                    .with_help("call the function in a loop instead of repeating the call, or compute the value once and reuse it"),
+                );
+            }
+            return false;
         }
+        if self.frames.len() >= MAX_INLINE_DEPTH {
+            let mut d = Diagnostic::error(
+                Code::InlineLimit,
+                format!("calls nested more than {MAX_INLINE_DEPTH} deep"),
+                span,
+                format!("this call of `{}` would be inlined at depth {}", f.name.name, self.frames.len() + 1),
+            )
+            .with_help("functions are inlined into the shader: shorten the chain of calls, or use a loop");
+            if let Some(first) = self.frames.first() {
+                d = d.with_label(first.call_span, format!("the outermost call, of `{}`", first.name));
+            }
+            self.error(d);
+            return false;
+        }
+        true
     }
 
     /// A built-in written in the language (`noise`, `cellnoise`, ...): inlines its implementation
@@ -284,7 +335,7 @@ impl Lowerer<'_> {
         };
         let args: Vec<Option<ExprId>> = args.into_iter().map(Some).collect();
         let first = self.locals.len();
-        let result = self.inline_call(f, &args, span, None, true, out);
+        let result = self.inline_call(f, &args, span, None, true, out)?;
         // `patina explain` shows the implementation's variables under the built-in's name.
         for local in &mut self.locals[first..] {
             if local.function.as_deref() == Some(name.as_str()) {

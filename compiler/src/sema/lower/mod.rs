@@ -104,6 +104,8 @@ pub(super) struct Lowerer<'a> {
     no_effects: u32,
     result_local: Option<LocalId>,
     result_type: Type,
+    /// Whether the shader's size limit (`call::MAX_SHADER_EXPRESSIONS`) has been reported.
+    inline_limit_reported: bool,
 }
 
 /// Lowers one shader; `None` if it had errors (they have been reported).
@@ -231,6 +233,7 @@ impl<'a> Lowerer<'a> {
             no_effects: 0,
             result_local: None,
             result_type,
+            inline_limit_reported: false,
         }
     }
 }

@@ -26,6 +26,14 @@ use expand::Expander;
 /// Includes nested deeper than this are an error (a file that includes itself gets here fast).
 pub const MAX_INCLUDE_DEPTH: usize = 64;
 
+/// A source file larger than this (in bytes) is refused: the root file or an included one.
+/// Spans are 32-bit offsets, and no shader comes near this.
+pub const MAX_FILE_SIZE: usize = 16 << 20;
+
+/// The text of a root file and everything it includes (each inclusion counted) may not add up to
+/// more than this many bytes.
+pub const MAX_TOTAL_SOURCE: usize = 64 << 20;
+
 /// One `#if` ... `#endif` in progress.
 struct Conditional {
     /// The `#if`, `#ifdef` or `#ifndef` directive.
@@ -58,7 +66,12 @@ pub fn preprocess(
         out: Vec::new(),
         produced: 0,
         exhausted: false,
+        total: 0,
     };
+    let at = Span::new(root, 0..0);
+    if pp.too_large(&pp.sources.file(root).name.clone(), pp.sources.file(root).text.len(), at) {
+        return Vec::new();
+    }
     pp.run_file(root, 0);
     pp.out
 }
@@ -74,6 +87,8 @@ struct Preprocessor<'a> {
     out: Vec<Token>,
     produced: usize,
     exhausted: bool,
+    /// Bytes of source read so far, the root file's and every inclusion's.
+    total: usize,
 }
 
 fn active(conds: &[Conditional]) -> bool {
@@ -83,6 +98,35 @@ fn active(conds: &[Conditional]) -> bool {
 impl Preprocessor<'_> {
     fn text(&self, t: Token) -> &str {
         self.sources.text(t.span)
+    }
+
+    /// Counts a file of `len` bytes read for `at` (the include directive, or the root file's
+    /// start) and reports it if it crosses [`MAX_FILE_SIZE`] or [`MAX_TOTAL_SOURCE`].
+    fn too_large(&mut self, name: &str, len: usize, at: Span) -> bool {
+        // Past the total, the includes that follow are skipped without a report of their own.
+        if self.total > MAX_TOTAL_SOURCE {
+            return true;
+        }
+        self.total += len;
+        let (message, help) = if len > MAX_FILE_SIZE {
+            (
+                format!("`{name}` is {len} bytes, over the limit of {MAX_FILE_SIZE} bytes per source file"),
+                "split the file, or generate tables as textures instead of source",
+            )
+        } else if self.total > MAX_TOTAL_SOURCE {
+            (
+                format!(
+                    "the source with its includes reaches {} bytes at `{name}`, over the limit of {MAX_TOTAL_SOURCE} bytes",
+                    self.total
+                ),
+                "include each file once (`#pragma once`), or include fewer files",
+            )
+        } else {
+            return false;
+        };
+        let label = if at.start == at.end && at.start == 0 { "in this file" } else { "included here" };
+        self.diags.push(Diagnostic::error(Code::SourceTooLarge, message, at, label).with_help(help));
+        true
     }
 
     fn expander(&mut self) -> Expander<'_> {
@@ -577,7 +621,7 @@ impl Preprocessor<'_> {
         let includer = self.sources.file(file).name.clone();
         match self.loader.load(&target, quoted, &includer) {
             Ok(loaded) => {
-                if self.once.contains(&loaded.name) {
+                if self.once.contains(&loaded.name) || self.too_large(&loaded.name, loaded.text.len(), span) {
                     return;
                 }
                 let id = self.sources.add_file(loaded.name, loaded.text, Some(span));

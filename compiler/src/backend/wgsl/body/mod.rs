@@ -13,8 +13,11 @@ use naga::{
 use rustc_hash::FxHashMap;
 use smol_str::SmolStr;
 
+mod bound;
 mod expr;
 mod operators;
+
+pub use bound::MAX_LOOP_ITERATIONS;
 
 use super::func::FnBuilder;
 use super::module::{ModuleBuilder, sanitize};
@@ -46,6 +49,8 @@ pub(crate) struct Translator<'a> {
     functions: u32,
     /// The constant tables among the locals, which live in initialized module variables.
     tables: FxHashMap<LocalId, super::tables::Contents>,
+    /// The stores into each local, found at the first loop (for its trip count).
+    stores: Option<Vec<crate::ir::stores::Stores>>,
 }
 
 /// A value with its language type, for the helpers that dispatch on types.
@@ -76,6 +81,7 @@ impl<'a> Translator<'a> {
             names,
             functions: 0,
             tables: super::tables::find(shader),
+            stores: None,
         }
     }
 
@@ -130,18 +136,19 @@ impl<'a> Translator<'a> {
 
     /// Translates a block of statements into the open naga block.
     pub fn block(&mut self, block: &[Stmt]) -> Result<(), Diagnostic> {
-        for s in block {
-            self.statement(s)?;
+        for (i, s) in block.iter().enumerate() {
+            self.statement(s, i.checked_sub(1).map(|j| &block[j]))?;
         }
         Ok(())
     }
 
-    /// Translates one statement (once per light for Stanford per-light statements).
-    pub(crate) fn statement(&mut self, stmt: &Stmt) -> Result<(), Diagnostic> {
+    /// Translates one statement (once per light for Stanford per-light statements); `before` is
+    /// the statement before it in its block (a loop's counter may be set there).
+    pub(crate) fn statement(&mut self, stmt: &Stmt, before: Option<&Stmt>) -> Result<(), Diagnostic> {
         if self.light.is_none() && self.statement_is_perlight(stmt) {
             for k in 0..self.lights.len() {
                 self.light = Some(k);
-                let r = self.statement(stmt);
+                let r = self.statement(stmt, before);
                 self.light = None;
                 r?;
             }
@@ -170,15 +177,18 @@ impl<'a> Translator<'a> {
                 self.fb.push(Statement::If { condition: c, accept, reject });
             }
             Stmt::Loop { cond, body, step, .. } => {
+                let stores = self.stores.get_or_insert_with(|| crate::ir::stores::stores(self.shader));
+                let counted = bound::constant_trip_count(self.shader, stores, before, *cond, step).is_none();
+                let counter = counted.then(|| self.iteration_counter());
                 self.fb.open();
                 if let Some(c) = cond {
                     self.memo.clear();
                     let c = self.condition(*c)?;
                     let not = self.fb.add(Expression::Unary { op: UnaryOperator::LogicalNot, expr: c });
-                    self.fb.open();
-                    self.fb.push(Statement::Break);
-                    let accept = self.fb.close();
-                    self.fb.push(Statement::If { condition: not, accept, reject: naga::Block::new() });
+                    self.break_if(not);
+                }
+                if let Some(counter) = counter {
+                    self.count_iteration(counter);
                 }
                 self.block(body)?;
                 let body = self.fb.close();
@@ -198,6 +208,45 @@ impl<'a> Translator<'a> {
             Stmt::Emit { solar, args, body } => self.emission(*solar, args, body)?,
         }
         Ok(())
+    }
+
+    /// `if condition { break; }`.
+    fn break_if(&mut self, condition: Value) {
+        self.fb.open();
+        self.fb.push(Statement::Break);
+        let accept = self.fb.close();
+        self.fb.push(Statement::If { condition, accept, reject: naga::Block::new() });
+    }
+
+    /// A fresh `u32` variable of the current function, set to zero here (before the loop it
+    /// counts, so that each execution of the loop counts from zero).
+    fn iteration_counter(&mut self) -> Handle<naga::LocalVariable> {
+        let ty = self.mb.ty(Type::of(Base::Uint), false);
+        let name = format!("loop_iterations_{}", self.fb.f.local_variables.len());
+        let counter = self
+            .fb
+            .f
+            .local_variables
+            .append(naga::LocalVariable { name: Some(name), ty, init: None }, Span::UNDEFINED);
+        let pointer = self.fb.add(Expression::LocalVariable(counter));
+        let zero = self.fb.add(Expression::Literal(NLit::U32(0)));
+        self.store(pointer, zero);
+        counter
+    }
+
+    /// At the top of a loop's body: leaves the loop once it has run [`MAX_LOOP_ITERATIONS`]
+    /// times, and counts this iteration.
+    fn count_iteration(&mut self, counter: Handle<naga::LocalVariable>) {
+        let pointer = self.fb.add(Expression::LocalVariable(counter));
+        let count = self.load(pointer);
+        let cap = u32::try_from(MAX_LOOP_ITERATIONS).expect("the cap fits in u32");
+        let cap = self.fb.add(Expression::Literal(NLit::U32(cap)));
+        let spent =
+            self.fb.add(Expression::Binary { op: BinaryOperator::GreaterEqual, left: count, right: cap });
+        self.break_if(spent);
+        let one = self.fb.add(Expression::Literal(NLit::U32(1)));
+        let next = self.fb.add(Expression::Binary { op: BinaryOperator::Add, left: count, right: one });
+        self.store(pointer, next);
     }
 
     /// An inlined call becomes a naga function of its own, so that its `return` is naga's.

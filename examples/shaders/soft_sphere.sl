@@ -56,3 +56,28 @@ soft_sphere(float steps = 64, kappa = 3, phase = 0.5, extent = 1.2;
     Ci = rgb(acc);
     Oi = acc[3];
 }
+
+// The exact image of `soft_sphere` (variant 0), the reference `patina bench` measures the march
+// against: the closed-form optical depth of the unit-extinction soft sphere along the ray at
+// impact parameter b (seed-digest §12 S2; S0 and S1 are the half-chords of the outer and inner
+// spheres), and the opacity 1 - exp(-kappa tau) of linear extinction, emission only.
+surface
+soft_sphere_exact(float kappa = 3, extent = 1.2; color emission = color(1, 0.55, 0.15))
+{
+    float r1 = 0.3, r0 = 0.5;
+    float b = length(vector(extent * (s - 0.5), extent * (0.5 - t), 0));
+    float d = r0 * r0 - r1 * r1;
+    float tau = 0;
+    if (b < r0) {
+        float s0 = sqrt(r0 * r0 - b * b);
+        if (b >= r1) {
+            tau = 4.0 / 3.0 * s0 * s0 * s0 / d;
+        } else {
+            float s1 = sqrt(r1 * r1 - b * b);
+            tau = 2 * s1 + 2 * (s0 * s0 * (s0 - s1) - (s0 * s0 * s0 - s1 * s1 * s1) / 3) / d;
+        }
+    }
+    float alpha = 1 - exp(-kappa * tau);
+    Ci = emission * alpha;
+    Oi = alpha;
+}

@@ -43,3 +43,49 @@ zone_plate(float aa = 1;
     Ci = c / (k * k);
     Oi = 1;
 }
+
+// The exact average of frac(a + b t^2) over t in [t0, t1] (0 <= t0 < t1, b > 0): on each piece
+// where floor(a + b t^2) = k is constant, the integral of a - k + b t^2; the pieces end where the
+// ramp crosses an integer, at t = sqrt((k + 1 - a) / b).
+float zone_plate_line_average(float a, b, t0, t1)
+{
+    float sum = 0;
+    float lo = t0;
+    float k = floor(a + b * t0 * t0);
+    while (lo < t1) {
+        // Clamped: rounding must not step backwards or past the segment.
+        float hi = clamp(sqrt(max(k + 1 - a, 0) / b), lo, t1);
+        sum += (a - k) * (hi - lo) + b * (hi * hi * hi - lo * lo * lo) / 3;
+        lo = hi;
+        k += 1;
+    }
+    return sum / (t1 - t0);
+}
+
+// The exact image of `zone_plate`, the reference `patina bench` measures its antialiasing
+// against: the zebra ramp frac(f) averaged over each pixel's box in (s, t), exactly along t and by
+// 5-point Gauss-Legendre quadrature on `panels` panels along s (the line average is continuous
+// in s, so the quadrature converges fast; runtime/tests/gallery/solid.rs checks the same integral
+// written independently in Rust). On this screen-aligned plane the box is ds by dt, with the
+// analytic derivatives of the CPU reference.
+surface
+zone_plate_exact(float frequency = 50; float panels = 64)
+{
+    float ds = filterwidth(s), dt = filterwidth(t);
+    float s0 = max(s - 0.5 * ds, 0), t0 = max(t - 0.5 * dt, 0), t1 = t0 + dt;
+    uniform float n = clamp(floor(panels), 1, 256);
+    float h = ds / n;
+    constant float node[5] = {0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
+    constant float weight[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891, 0.2369268850561891};
+    float sum = 0;
+    uniform float i, j;
+    for (i = 0; i < n; i += 1) {
+        float mid = s0 + (i + 0.5) * h;
+        for (j = 0; j < 5; j += 1) {
+            float ss = mid + 0.5 * h * node[j];
+            sum += 0.5 * weight[j] * zone_plate_line_average(frequency * ss * ss, frequency, t0, t1);
+        }
+    }
+    Ci = sum / n;
+    Oi = 1;
+}

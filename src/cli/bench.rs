@@ -191,6 +191,17 @@ fn markdown(s: &Sweep, args: &BenchArgs, device: &str) -> String {
         ms(s.reference_time),
         s.runs
     );
+    for backend in [Backend::Gpu, Backend::Cpu] {
+        if let Some(order) = s.convergence_order(backend) {
+            let _ = writeln!(
+                out,
+                "Measured order of convergence ({}): **{order:.2}** (least-squares slope of log RMS error \
+                 against log {}).\n",
+                backend_name(backend),
+                if s.kind == patina_runtime::scene::KnobKind::StepSize { "step size" } else { "setting" }
+            );
+        }
+    }
     let _ = writeln!(out, "| setting | renderer | median ms | min–max ms | RMS error | max error | Pareto |");
     let _ = writeln!(out, "|---|---|---:|---:|---:|---:|:---:|");
     for r in &s.rows {

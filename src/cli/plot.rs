@@ -101,7 +101,10 @@ fn draw<DB: DrawingBackend>(
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
         chart
             .draw_series(LineSeries::new(front, c.stroke_width(2)))?
-            .label(format!("{} (line: Pareto front)", backend_name(backend)))
+            .label(match sweep.convergence_order(backend) {
+                Some(order) => format!("{} (line: Pareto front), order {order:.2}", backend_name(backend)),
+                None => format!("{} (line: Pareto front)", backend_name(backend)),
+            })
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
         chart.draw_series(rows.iter().map(|(r, p)| {
             let style = if r.pareto { c.filled() } else { c.stroke_width(2) };

@@ -172,6 +172,36 @@ pub fn run(
     })
 }
 
+impl Sweep {
+    /// The empirical order of convergence on `backend`: the least-squares slope of log RMS error
+    /// against log step count (negated) or log step size, for a knob of steps, step sizes or
+    /// samples whose settings are numbers; `None` for other knobs or fewer than two usable rows.
+    /// Settings whose error is at the reference's own level (below 1e-6) are left out: there the
+    /// error is rounding, not truncation.
+    pub fn convergence_order(&self, backend: Backend) -> Option<f64> {
+        let sign = match self.kind {
+            KnobKind::Steps | KnobKind::Samples => -1.0,
+            KnobKind::StepSize => 1.0,
+            _ => return None,
+        };
+        let points: Vec<(f64, f64)> = (self.rows.iter())
+            .filter(|r| r.backend == backend && r.rms_error > 1e-6)
+            .filter_map(|r| {
+                Some((r.setting.parse::<f64>().ok().filter(|v| *v > 0.0)?.ln(), r.rms_error.ln()))
+            })
+            .collect();
+        if points.len() < 2 {
+            return None;
+        }
+        let n = points.len() as f64;
+        let (mx, my) =
+            (points.iter().map(|p| p.0).sum::<f64>() / n, points.iter().map(|p| p.1).sum::<f64>() / n);
+        let sxy: f64 = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+        let sxx: f64 = points.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
+        (sxx > 0.0).then(|| sign * sxy / sxx)
+    }
+}
+
 /// A renderer's name in tables and plots.
 pub fn backend_name(backend: Backend) -> &'static str {
     match backend {
@@ -215,6 +245,47 @@ pub fn median(times: &[Duration]) -> Duration {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn row(setting: &str, backend: Backend, rms_error: f64) -> Row {
+        let t = Duration::from_millis(1);
+        Row {
+            setting: setting.into(),
+            backend,
+            compile: t,
+            times: vec![t],
+            median: t,
+            rms_error,
+            max_error: rms_error,
+            non_finite: 0,
+            pareto: true,
+        }
+    }
+
+    #[test]
+    fn convergence_order_is_the_slope_of_the_log_error() {
+        // Error 3 n^-2 on the CPU; the GPU's rows have another slope and do not mix in.
+        let mut rows: Vec<Row> =
+            [4.0, 8.0, 16.0].iter().map(|n: &f64| row(&n.to_string(), Backend::Cpu, 3.0 / (n * n))).collect();
+        rows.push(row("4", Backend::Gpu, 0.5));
+        rows.push(row("16", Backend::Gpu, 0.5 / 4.0));
+        // At the reference's rounding level: left out.
+        rows.push(row("1024", Backend::Cpu, 1e-7));
+        let mut sweep = Sweep {
+            scene: "s.toml".into(),
+            knob: "steps".into(),
+            kind: KnobKind::Steps,
+            reference: "exact".into(),
+            reference_time: Duration::ZERO,
+            width: 1,
+            height: 1,
+            runs: 1,
+            rows,
+        };
+        assert!((sweep.convergence_order(Backend::Cpu).unwrap() - 2.0).abs() < 1e-12);
+        assert!((sweep.convergence_order(Backend::Gpu).unwrap() - 1.0).abs() < 1e-12);
+        sweep.kind = KnobKind::Octaves;
+        assert_eq!(sweep.convergence_order(Backend::Cpu), None);
+    }
 
     #[test]
     fn median_of_odd_and_even_counts() {

@@ -156,6 +156,63 @@ fn st_at(b: f64, angle: f64) -> (f64, f64) {
 }
 
 #[test]
+fn soft_sphere_compositing_is_stable_at_stiff_optical_depths() {
+    // 8 steps across a chord of length <= 1, so h <= 1/8 and the core (D = 1) gives a step of
+    // depth kappa / 8: kappa = 8e4 reaches an optical depth of 1e4 per step, and beyond.
+    for depth in [1e4, 1e6, 1e30] {
+        let mut s = soft_scene(32);
+        set(&mut s, &[0], "steps", 8.0);
+        set(&mut s, &[0], "kappa", 8.0 * depth);
+        let label = format!("soft_sphere at depth {depth:e} per step");
+        let images = match both(&label, &s, Thresholds::default()) {
+            Some(r) => vec![("CPU", r.cpu), ("GPU", r.gpu)],
+            None => vec![("CPU", cpu(&label, &s))],
+        };
+        for (name, image) in &images {
+            let (mut opaque, mut clear) = (0, 0);
+            for y in 0..image.height {
+                for x in 0..image.width {
+                    let p = at(image, x, y);
+                    let b = impact(x, y, image.width, image.height);
+                    assert!(p.iter().all(|c| c.is_finite()), "{label} {name}: {p:?} at ({x}, {y})");
+                    // The transmittance 1 - alpha stays in [0, 1], and so does each colour channel
+                    // against its emission.
+                    assert!((0.0..=1.0).contains(&p[3]), "{label} {name}: alpha {} at ({x}, {y})", p[3]);
+                    for (c, k) in p[..3].iter().zip(EMISSION) {
+                        assert!(f64::from(*c) <= k * f64::from(p[3]) + 1e-6, "{label} {name}: {p:?}");
+                    }
+                    // Through the core, some step has depth >= 1e4: exactly opaque. Outside the
+                    // outer sphere, exactly clear.
+                    if b < R1 - 0.02 {
+                        assert_eq!(p[3], 1.0, "{label} {name}: alpha at b = {b}");
+                        opaque += 1;
+                    }
+                    if b > R0 + 0.02 {
+                        assert_eq!(p, [0.0; 4], "{label} {name}: outside at b = {b}");
+                        clear += 1;
+                    }
+                }
+            }
+            assert!(opaque > 100 && clear > 100, "{label} {name}: {opaque} core, {clear} outside pixels");
+        }
+    }
+}
+
+#[test]
+fn soft_sphere_exact_shader_is_the_closed_form() {
+    // The reference of the scene's `steps` knob (examples/scenes/reference/soft_sphere_exact.toml)
+    // against the closed form written here independently, at the same pixel centres.
+    let path = format!("{}/../examples/scenes/reference/soft_sphere_exact.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut s = patina_runtime::scene::Scene::load(&path).unwrap();
+    (s.output.width, s.output.height) = (48, 48);
+    let image = cpu("soft_sphere_exact", &s);
+    let (max, rms, colour) = alpha_errors(&image);
+    println!("soft_sphere_exact 48x48 against the closed form: max {max:.2e}, rms {rms:.2e}");
+    // f32 rounding of the closed form (1 - exp(-x) near 0, the cancelling terms of tau).
+    assert!(max < 2e-6 && colour < 1e-6, "max {max}, colour {colour}");
+}
+
+#[test]
 fn soft_sphere_grazing_and_central_rays_are_finite_and_exact() {
     // The scene's surface shader run pointwise at chosen (s, t): through the centre (b = 0),
     // across the inner radius, and grazing the outer one (b = r0 (1 + k 2^-23), k = -64..64), on

@@ -3,7 +3,8 @@
 //! `CpuProgram::compile` for each, and for each surface shader the split and the WGSL module
 //! (validated by naga) with the file's lights and displacement bound. A backend may reject a
 //! program with a diagnostic; an internal error (E0799) on a program that checked clean is a bug,
-//! and so is a panic.
+//! and so is a panic. The one E0799 that is not a bug is the WGSL translator's "cannot translate
+//! this yet" (a construct only the interpreter runs, such as `break 2`): it is a known limit.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -14,8 +15,12 @@ use patina_compiler::ir::Shader;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
+/// The help line of the WGSL translator's known limits (`Translator::error`).
+const NOT_YET: &str = "the WGSL backend cannot translate this yet";
+
 fn not_internal(stage: &str, d: &Diagnostic) {
-    assert!(d.code != Code::Internal, "{stage}: {}", d.message);
+    let known_limit = d.help.as_deref().is_some_and(|h| h.starts_with(NOT_YET));
+    assert!(d.code != Code::Internal || known_limit, "{stage}: {}", d.message);
 }
 
 fuzz_target!(|data: &[u8]| {

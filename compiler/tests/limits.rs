@@ -3,7 +3,7 @@
 
 use std::time::{Duration, Instant};
 
-use patina_compiler::backend::wgsl::{MAX_LOOP_ITERATIONS, compile_kernel};
+use patina_compiler::backend::wgsl::{self, BoundLight, MAX_LIGHTS, MAX_LOOP_ITERATIONS, compile_kernel};
 use patina_compiler::diag::Diagnostic;
 use patina_compiler::syntax::preprocess::{MAX_FILE_SIZE, MAX_TOTAL_SOURCE, MemoryLoader};
 use patina_compiler::{Checked, check_source};
@@ -164,7 +164,8 @@ fn call_chain(n: usize) -> String {
 
 #[test]
 fn a_long_chain_of_calls_stops_at_the_inlining_depth() {
-    let src = call_chain(100);
+    // 300 functions: past the refused call, the rest are checked on their own and report nothing.
+    let src = call_chain(300);
     let start = Instant::now();
     let checked = check(&src);
     let d = only_error(&checked);
@@ -274,7 +275,7 @@ fn gpu_loops_with_data_dependent_trip_counts_are_capped_and_counting_loops_are_n
     let text =
         naga::back::wgsl::write_string(&kernel.module, &kernel.info, naga::back::wgsl::WriterFlags::empty())
             .expect("writes");
-    assert!(text.contains("1048576u"), "{text}");
+    assert!(text.contains("65535u"), "{text}");
 }
 
 #[test]
@@ -294,4 +295,35 @@ fn a_counter_stored_in_the_body_or_reused_keeps_the_cap() {
         let kernel = compile_kernel(&shader, &[], &[], &[], &["Ci"]).expect("compiles");
         assert_eq!(loops(&kernel.module), capped, "{src}");
     }
+}
+
+#[test]
+fn more_lights_than_the_limit_are_refused_and_the_limit_itself_compiles() {
+    let surface = check("surface lit() {\n    illuminance(P) { Ci += Cl; }\n}\n");
+    let light = check("light one() {\n    illuminate(point(0, 1, 0)) { Cl = 1; }\n}\n");
+    let mut shader = surface.program.shaders[0].clone();
+    patina_compiler::opt::prepare(&mut shader);
+    let stages = patina_compiler::split::split(&shader).expect("splits");
+    let mut one = light.program.shaders[0].clone();
+    patina_compiler::opt::prepare(&mut one);
+    let bound = |n: usize| -> Vec<BoundLight> {
+        (0..n).map(|_| BoundLight { shader: &one, strings: vec![], categories: vec![] }).collect()
+    };
+    assert!(wgsl::compile(&stages, &bound(MAX_LIGHTS), &[]).is_ok());
+    let d = wgsl::compile(&stages, &bound(MAX_LIGHTS + 1), &[]).expect_err("over the limit");
+    assert_eq!(d.code.as_str(), "E0704");
+    assert_eq!(d.message, "65 lights are bound to `lit`, over the limit of 64");
+    assert!(surface.sources.text(d.primary_span()).starts_with("surface lit()"));
+    assert!(d.labels.iter().any(|l| l.message == "light 65 (`one`) is over the limit"));
+}
+
+#[test]
+fn an_array_over_the_length_limit_is_refused_at_its_size() {
+    let src = "surface t() {\n    float table[100000000];\n    table[3] = 1;\n    Ci = table[3];\n}\n";
+    let checked = check(src);
+    let d = only_error(&checked);
+    assert_eq!(d.code.as_str(), "E0315");
+    assert_eq!(d.message, "an array of 100000000 elements, over the limit of 4096");
+    assert_eq!(at(&checked, d), ("100000000".to_string(), src.find("100000000").unwrap()));
+    assert!(!check("surface t() { float table[4096]; table[3] = 1; Ci = table[3]; }").has_errors());
 }

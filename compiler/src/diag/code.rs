@@ -198,6 +198,8 @@ codes! {
     IterationBudget = "E0702",
     /// A parameter, input or output name that the shader does not have, or a value of the wrong size.
     UnknownInput = "E0703",
+    /// More lights bound to a shader than the backends unroll.
+    LightLimit = "E0704",
     /// An inconsistency between compiler stages: a bug in Patina, reported with the source position.
     Internal = "E0799",
 }

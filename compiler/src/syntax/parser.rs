@@ -14,6 +14,11 @@ use super::{delimiters, errors};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::source::{SourceMap, Span};
 
+/// The most elements an array may have: every shaded point holds its own copy (the interpreter
+/// keeps one register per element and lane, 128 lanes to a batch), so a large array exhausts
+/// memory long before it is useful. The standard library's largest table has 768.
+pub const MAX_ARRAY_LENGTH: usize = 4096;
+
 lalrpop_util::lalrpop_mod!(
     #[allow(clippy::all, clippy::pedantic, unused_parens, unused_imports, missing_docs)]
     grammar,
@@ -288,9 +293,24 @@ impl Ctx<'_> {
         e
     }
 
-    /// The size in `name[size]`, which must be a positive integer literal (after macro expansion).
+    /// The size in `name[size]`, which must be a positive integer literal (after macro expansion)
+    /// of at most [`MAX_ARRAY_LENGTH`].
     pub fn array_size(&self, e: Expr, span: Span) -> ArraySize {
         match e.kind {
+            ExprKind::Int { value, .. } if value as usize > MAX_ARRAY_LENGTH => {
+                self.report(
+                    Diagnostic::error(
+                        Code::ResourceLimit,
+                        format!("an array of {value} elements, over the limit of {MAX_ARRAY_LENGTH}"),
+                        e.span,
+                        "array size over the limit",
+                    )
+                    .with_help(
+                        "every shaded point holds its own copy of an array: store large tables in a texture",
+                    ),
+                );
+                ArraySize { len: None, span }
+            }
             ExprKind::Int { value, .. } if value > 0 => ArraySize { len: Some(value), span },
             _ => {
                 self.report(

@@ -21,10 +21,7 @@ impl Gpu {
         output_len: usize,
         workgroups: u32,
     ) -> Result<Vec<u8>, GpuError> {
-        let limit = self.device.limits().max_compute_workgroups_per_dimension;
-        if workgroups > limit {
-            return Err(GpuError::InvalidInput(format!("{workgroups} workgroups (at most {limit})")));
-        }
+        super::limits::check_compute(&self.device.limits(), uniforms.len(), inputs, output_len, workgroups)?;
         let readback =
             self.scoped(|| self.encode_compute(module, entry, uniforms, inputs, output_len, workgroups))?;
         let mut bytes = self.read_buffer(&readback)?;

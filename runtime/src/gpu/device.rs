@@ -2,7 +2,6 @@
 
 use super::GpuError;
 use std::sync::{Arc, Mutex, mpsc};
-use wgpu::util::DeviceExt;
 
 /// A wgpu device and queue, with the texture format chosen for sampled textures.
 pub struct Gpu {
@@ -13,6 +12,8 @@ pub struct Gpu {
     pub(super) texture_format: wgpu::TextureFormat,
     /// Errors raised outside any error scope (the default handler would panic).
     uncaptured: Arc<Mutex<Option<String>>>,
+    /// Why the device was lost, once it has been.
+    lost: Arc<Mutex<Option<String>>>,
 }
 
 impl Gpu {
@@ -49,12 +50,42 @@ impl Gpu {
                 slot.get_or_insert_with(|| e.to_string());
             }
         }));
+        let lost = Arc::new(Mutex::new(None));
+        let sink = Arc::clone(&lost);
+        device.set_device_lost_callback(move |reason, message| {
+            if let Ok(mut slot) = sink.lock() {
+                slot.get_or_insert_with(|| format!("{message} ({reason:?})"));
+            }
+        });
         let texture_format = if features.contains(wgpu::Features::FLOAT32_FILTERABLE) {
             wgpu::TextureFormat::Rgba32Float
         } else {
             wgpu::TextureFormat::Rgba16Float
         };
-        Ok(Gpu { adapter, device, queue, texture_format, uncaptured })
+        Ok(Gpu { adapter, device, queue, texture_format, uncaptured, lost })
+    }
+
+    /// Destroys the device, as a driver reset would lose it: what runs on this `Gpu` afterwards
+    /// fails with [`GpuError::DeviceLost`]. For tests of that path.
+    #[doc(hidden)]
+    pub fn lose_device_for_tests(&self) {
+        self.device.destroy();
+    }
+
+    /// The device's limits, which renders and dispatches are checked against.
+    pub fn limits(&self) -> wgpu::Limits {
+        self.device.limits()
+    }
+
+    /// `Err(DeviceLost)` once the device is lost: wgpu's own errors after that name no cause.
+    pub(super) fn check_alive(&self) -> Result<(), GpuError> {
+        // wgpu calls the device-lost callback from a poll; a failed poll says nothing more.
+        let _ = self.device.poll(wgpu::PollType::Poll);
+        let lost = match self.lost.lock() {
+            Ok(slot) => slot.clone(),
+            Err(_) => Some("a previous device-lost handler panicked".to_string()),
+        };
+        lost.map_or(Ok(()), |why| Err(GpuError::DeviceLost(why)))
     }
 
     /// One line naming the adapter, its backend and device type, e.g. `llvmpipe (LLVM 15) (Vulkan, Cpu)`.
@@ -66,6 +97,7 @@ impl Gpu {
     /// Runs `f` inside validation, out-of-memory and internal error scopes and turns the first error
     /// wgpu reports (inside the scopes or, earlier, outside them) into `GpuError::Wgpu`.
     pub(super) fn scoped<T>(&self, f: impl FnOnce() -> T) -> Result<T, GpuError> {
+        self.check_alive()?;
         let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
         let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
@@ -77,13 +109,18 @@ impl Gpu {
             pollster::block_on(oom.pop()),
         ];
         if let Some(e) = errors.into_iter().flatten().next() {
-            return Err(GpuError::Wgpu(e.to_string()));
+            self.check_alive()?;
+            return Err(match e {
+                wgpu::Error::OutOfMemory { .. } => GpuError::OutOfMemory(e.to_string()),
+                e => GpuError::Wgpu(e.to_string()),
+            });
         }
         self.take_uncaptured()?;
         Ok(value)
     }
 
     fn take_uncaptured(&self) -> Result<(), GpuError> {
+        self.check_alive()?;
         let message = match self.uncaptured.lock() {
             Ok(mut slot) => slot.take(),
             Err(_) => Some("a previous GPU error handler panicked".to_string()),
@@ -97,11 +134,16 @@ impl Gpu {
         let mut padded = Vec::with_capacity(len);
         padded.extend_from_slice(bytes);
         padded.resize(len, 0);
-        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        // Written through the queue, not mapped at creation: wgpu's `create_buffer_init` panics
+        // when the device is lost, where this reports an error to the scope around it.
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: None,
-            contents: &padded,
-            usage,
-        })
+            size: len as u64,
+            usage: usage | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.queue.write_buffer(&buffer, 0, &padded);
+        buffer
     }
 
     /// Waits for the queue, maps `buffer` (created with `MAP_READ`) and copies its contents out.
@@ -111,12 +153,10 @@ impl Gpu {
             // The receiver outlives the poll below; a failed send only means we already gave up.
             let _ = tx.send(r);
         });
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        // A lost device fails the wait or the mapping; say so rather than how the wait failed.
+        let readback = |e: String| self.check_alive().err().unwrap_or(GpuError::Readback(e));
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| readback(e.to_string()))?;
+        rx.recv().map_err(|e| readback(e.to_string()))?.map_err(|e| readback(e.to_string()))?;
         let bytes = buffer.get_mapped_range(..).map_err(|e| GpuError::Readback(e.to_string()))?.to_vec();
         buffer.unmap();
         self.take_uncaptured()?;

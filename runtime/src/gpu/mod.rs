@@ -6,6 +6,7 @@
 
 mod compute;
 mod device;
+mod limits;
 mod pipeline;
 mod render;
 mod texture;
@@ -32,6 +33,24 @@ pub enum GpuError {
     InvalidInput(String),
     /// Waiting for the device or mapping a buffer back failed.
     Readback(String),
+    /// Something asked of the device is over one of its limits; checked before creating it.
+    Limit {
+        /// What was being created, with its size.
+        what: String,
+        /// The amount asked (pixels per side, bytes, count: as `what` says).
+        asked: u64,
+        /// The device's limit.
+        limit: u64,
+        /// The limit's name in wgpu's `Limits` (and WebGPU's).
+        name: &'static str,
+    },
+    /// The device cannot do what was asked (a missing feature or format).
+    Unsupported(String),
+    /// The device ran out of memory creating or running something.
+    OutOfMemory(String),
+    /// The device was lost (a driver reset, a hang the driver stopped, or `destroy`); nothing more
+    /// can run on it.
+    DeviceLost(String),
 }
 
 impl fmt::Display for GpuError {
@@ -46,6 +65,12 @@ impl fmt::Display for GpuError {
             GpuError::Wgpu(why) => write!(f, "GPU error: {why}"),
             GpuError::InvalidInput(why) => write!(f, "invalid GPU input: {why}"),
             GpuError::Readback(why) => write!(f, "GPU readback failed: {why}"),
+            GpuError::Limit { what, asked, limit, name } => {
+                write!(f, "{what}: {asked} is over the device's limit of {limit} ({name})")
+            }
+            GpuError::Unsupported(why) => write!(f, "not supported by the GPU: {why}"),
+            GpuError::OutOfMemory(why) => write!(f, "the GPU ran out of memory: {why}"),
+            GpuError::DeviceLost(why) => write!(f, "the GPU device was lost: {why}"),
         }
     }
 }

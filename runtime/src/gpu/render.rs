@@ -6,7 +6,7 @@
 //! culled. The depth buffer (Depth32Float) is cleared to 1.0 and a fragment is kept when its depth
 //! is less than what is stored.
 
-use super::{Gpu, GpuError, TextureData};
+use super::{Gpu, GpuError, TextureData, limits};
 use crate::image::Image;
 
 /// The colour format of a render target; both read back as f32 RGBA.
@@ -81,17 +81,26 @@ pub(super) const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth3
 impl Gpu {
     /// Renders `draws` in order into a fresh target and reads it back (row 0 = top).
     pub fn render(&self, target: &Target, draws: &[Draw]) -> Result<Image, GpuError> {
-        check_target(target, &self.device.limits())?;
-        for (i, draw) in draws.iter().enumerate() {
-            check_draw(draw).map_err(|e| GpuError::InvalidInput(format!("draw {i}: {e}")))?;
-            for t in draw.textures {
-                t.check()?;
-            }
-        }
         let (bytes_per_pixel, format) = match target.format {
             TargetFormat::Rgba32Float => (16, wgpu::TextureFormat::Rgba32Float),
             TargetFormat::Rgba8 => (4, wgpu::TextureFormat::Rgba8Unorm),
         };
+        let limits = self.device.limits();
+        limits::check_target(target, &limits, bytes_per_pixel)?;
+        for (i, draw) in draws.iter().enumerate() {
+            check_draw(draw).map_err(|e| GpuError::InvalidInput(format!("draw {i}: {e}")))?;
+            limits::check_draw(draw, target.format, &limits, self.device.features()).map_err(
+                |e| match e {
+                    GpuError::Limit { what, asked, limit, name } => {
+                        GpuError::Limit { what: format!("draw {i}: {what}"), asked, limit, name }
+                    }
+                    e => e,
+                },
+            )?;
+            for t in draw.textures {
+                t.check()?;
+            }
+        }
         let row = target.width * bytes_per_pixel;
         let padded_row = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let readback = self.scoped(|| self.encode_render(target, draws, format, padded_row))??;
@@ -206,17 +215,6 @@ impl Gpu {
         self.queue.submit([encoder.finish()]);
         Ok(readback)
     }
-}
-
-fn check_target(target: &Target, limits: &wgpu::Limits) -> Result<(), GpuError> {
-    let max = limits.max_texture_dimension_2d;
-    if target.width == 0 || target.height == 0 || target.width > max || target.height > max {
-        return Err(GpuError::InvalidInput(format!(
-            "target size {}x{} is outside 1..={max}",
-            target.width, target.height
-        )));
-    }
-    Ok(())
 }
 
 /// The checks wgpu would not make (or would make only as a hard-to-read validation error).

@@ -58,5 +58,11 @@ pub fn render(gpu: &Gpu, prepared: &Prepared, width: u32, height: u32) -> Result
         })
         .collect();
     let target = Target { width, height, format: TargetFormat::Rgba32Float, clear: prepared.background };
-    gpu.render(&target, &draws).map_err(|e| RenderError::Gpu(e.to_string()))
+    // The device's limits apply to the supersampled target: say which image asked for it.
+    let n = prepared.supersample.max(1);
+    let image = match n {
+        1 => format!("the {width}x{height} image"),
+        n => format!("the {}x{} image at supersample {n}", width / n, height / n),
+    };
+    gpu.render(&target, &draws).map_err(|e| RenderError::Gpu(format!("rendering {image}: {e}")))
 }

@@ -177,8 +177,11 @@ enum Set<F> {
     Ints(Vec<u32>),
 }
 
-/// The iteration budget of each loop, unless changed with [`Evaluator::set_budget`].
-pub const DEFAULT_BUDGET: u64 = 1 << 20;
+/// The iteration budget of each loop, unless changed with [`Evaluator::set_budget`]. It is the
+/// GPU's iteration cap too (`backend::wgsl::MAX_LOOP_ITERATIONS`), so that a loop the GPU cuts
+/// short is an error here; 65535 is also where lavapipe (llvmpipe's `LP_MAX_TGSI_LOOP_ITERATIONS`)
+/// stops a loop by itself, so on it the two caps agree.
+pub const DEFAULT_BUDGET: u64 = 65_535;
 
 impl<'p, F: Real> Evaluator<'p, F> {
     /// An evaluator with every input at its default: parameters at their declared defaults,

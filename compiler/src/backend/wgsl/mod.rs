@@ -33,8 +33,8 @@ use crate::diag::{Code, Diagnostic};
 use crate::ir::{Shader, Stmt};
 use crate::source::Span;
 use crate::split::Stages;
-pub use body::MAX_LOOP_ITERATIONS;
 use body::Translator;
+pub use body::{MAX_LIGHTS, MAX_LOOP_ITERATIONS};
 pub use entry::RANDOM_ROW;
 use interface::Interface;
 pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel};
@@ -101,6 +101,7 @@ pub fn compile_object(
     lights: &[BoundLight],
     strings: &[(String, String)],
 ) -> Result<GpuProgram, Diagnostic> {
+    body::check_light_count(&stages.fragment, &lights.iter().map(|l| l.shader).collect::<Vec<_>>())?;
     let bindings: Vec<LightBinding> = lights
         .iter()
         .map(|l| LightBinding { ambient: is_ambient(l.shader), categories: l.categories.clone() })

@@ -296,7 +296,11 @@ impl Lowerer<'_> {
             if let Some(first) = self.frames.first() {
                 d = d.with_label(first.call_span, format!("the outermost call, of `{}`", first.name));
             }
-            self.error(d);
+            // The functions past the refused call are checked on their own, each starting a
+            // chain as deep again: only a shader's chain is reported, once.
+            if !self.standalone {
+                self.error(d);
+            }
             return false;
         }
         true

@@ -19,6 +19,26 @@ mod operators;
 
 pub use bound::MAX_LOOP_ITERATIONS;
 
+/// The most lights one shader may be bound to: light loops and light sums are unrolled over the
+/// bound lights, and each bound light adds its shader and its parameters to the module.
+pub const MAX_LIGHTS: usize = 64;
+
+/// Refuses more than [`MAX_LIGHTS`] lights bound to `surface` (`lights` are their shaders).
+pub(crate) fn check_light_count(surface: &Shader, lights: &[&Shader]) -> Result<(), Diagnostic> {
+    let Some(first_over) = lights.get(MAX_LIGHTS) else { return Ok(()) };
+    Err(Diagnostic::error(
+        Code::LightLimit,
+        format!("{} lights are bound to `{}`, over the limit of {MAX_LIGHTS}", lights.len(), surface.name),
+        surface.span,
+        "this shader's light loops would be unrolled over every light",
+    )
+    .with_label(
+        first_over.span,
+        format!("light {} (`{}`) is over the limit", MAX_LIGHTS + 1, first_over.name),
+    )
+    .with_help("merge lights into fewer light shaders (a light shader may sum several sources)"))
+}
+
 use super::func::FnBuilder;
 use super::module::{ModuleBuilder, sanitize};
 use crate::backend::cpu::LightBinding;

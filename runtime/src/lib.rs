@@ -4,8 +4,10 @@
 pub mod camera;
 pub mod gpu;
 pub mod image;
+pub mod kernel;
 pub mod mesh;
 pub mod raster;
 pub mod render;
 pub mod scene;
+pub mod stability;
 pub mod sweep;

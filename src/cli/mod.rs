@@ -10,6 +10,7 @@ mod gallery;
 mod plot;
 mod progress;
 mod render;
+mod stability;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -43,6 +44,42 @@ enum Command {
     /// Error against run time: render a scene at each setting of its quality knobs on the GPU and
     /// the CPU, time them and measure them against the reference; write CSV, Markdown and a plot.
     Bench(BenchArgs),
+    /// The extreme-input sweep of the standard library's functions (--stdlib) or of a file's
+    /// functions and surface shaders: non-finite results per backend and the backends' errors;
+    /// exit 1 when a finite input gave a non-finite output.
+    Stability(StabilityArgs),
+}
+
+/// Arguments of `patina stability`.
+#[derive(clap::Args, Debug)]
+pub struct StabilityArgs {
+    /// The shader file whose functions and surface shaders to sweep.
+    #[arg(required_unless_present = "stdlib", conflicts_with = "stdlib")]
+    file: Option<PathBuf>,
+    /// Sweep every function of every standard-library module.
+    #[arg(long)]
+    stdlib: bool,
+    /// Only this standard-library module (`volume` or `volume.sl`; repeat for more).
+    #[arg(long, value_name = "NAME", requires = "stdlib")]
+    module: Vec<String>,
+    /// Only the functions or shaders of this name (repeat for more).
+    #[arg(long, value_name = "NAME")]
+    function: Vec<String>,
+    /// Random combinations of extremes per function, after the systematic points.
+    #[arg(long, value_name = "N", default_value_t = 64)]
+    random: usize,
+    /// Where to run besides the interpreter: `cpu` skips the GPU.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Gpu)]
+    backend: BackendChoice,
+    /// Also write the table as Markdown.
+    #[arg(long, value_name = "FILE")]
+    markdown: Option<PathBuf>,
+    /// Also write the table as CSV.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+    /// A directory to search for `#include` files.
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
 }
 
 /// Which renderers `patina bench` times.
@@ -236,5 +273,6 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Render(args) => render::run(args),
         Command::Gallery(args) => gallery::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Stability(args) => stability::run(args),
     }
 }

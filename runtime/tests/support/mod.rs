@@ -9,7 +9,6 @@ pub mod gallery;
 
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding};
-use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
@@ -61,48 +60,8 @@ pub fn gpu_kernel(
     inputs: &Columns,
     outputs: &[&str],
 ) -> Vec<Vec<f64>> {
-    {
-        let mut diff = shader.clone();
-        patina_compiler::opt::derivs::differentiate(&mut diff);
-        let names: Vec<&str> = inputs.iter().map(|(n, _)| *n).collect();
-        let kernel = compile_kernel(&diff, lights, &[], &names, outputs)
-            .unwrap_or_else(|d| panic!("the WGSL backend: {}: {}", d.code, d.message));
-        let stride = kernel.input_stride as usize;
-        let mut words = vec![0u32; count * stride];
-        for (value, (name, column)) in kernel.inputs.iter().zip(inputs) {
-            let w = value.words as usize;
-            assert_eq!(column.len(), count * w, "input `{name}`: {} values for {count} points", column.len());
-            for i in 0..count {
-                for c in 0..w {
-                    words[i * stride + value.offset as usize + c] = (column[i * w + c] as f32).to_bits();
-                }
-            }
-        }
-        let input: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
-        let out_stride = kernel.output_stride as usize;
-        let groups = (count as u32).div_ceil(KERNEL_WORKGROUP).max(1);
-        let bytes = gpu
-            .compute(&kernel.module, "main", &[], &[&input], count * out_stride * 4, groups)
-            .expect("the kernel runs");
-        let out: Vec<f32> = bytes
-            .chunks_exact(4)
-            .map(|c| f32::from_bits(u32::from_le_bytes([c[0], c[1], c[2], c[3]])))
-            .collect();
-        kernel
-            .outputs
-            .iter()
-            .map(|value| {
-                let w = value.words as usize;
-                let mut column = Vec::with_capacity(count * w);
-                for i in 0..count {
-                    for c in 0..w {
-                        column.push(f64::from(out[i * out_stride + value.offset as usize + c]));
-                    }
-                }
-                column
-            })
-            .collect()
-    }
+    patina_runtime::kernel::run_kernel(gpu, shader, lights, count, inputs, outputs)
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Perlin's permutation of 0..255, as published in his ImprovedNoise.java (2002): the table the

@@ -1,0 +1,160 @@
+//! `patina stability` as a user meets it: a clean standard-library module exits 0, a planted
+//! unstable function exits 1 and is named with its backend and input, its guarded version and a
+//! documented precondition exit 0, the table goes to Markdown and CSV, bad usage exits 2.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn patina(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_patina"))
+        .arg("stability")
+        .args(args)
+        .env("NODEVICE_SELECT", "1")
+        .output()
+        .expect("the patina binary runs")
+}
+
+/// A scratch directory of this test alone (tests run in parallel).
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("patina-stability-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn shader_file(test: &str, source: &str) -> String {
+    let path = scratch(test).join("f.sl");
+    std::fs::write(&path, source).expect("write the shader");
+    path.to_string_lossy().into_owned()
+}
+
+fn text(out: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn a_stdlib_module_sweeps_clean_on_every_backend() {
+    // The GPU runs when there is an adapter (the command says so in a line when there is not).
+    let out = patina(&[
+        "--stdlib",
+        "--module",
+        "volume",
+        "--function",
+        "soft_sphere",
+        "--function",
+        "volume_opacity",
+        "--random",
+        "4",
+    ]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stdout.contains("soft_sphere(point, point, float, float)"), "{stdout}");
+    assert!(stdout.contains("volume_opacity(float)"), "{stdout}");
+    assert!(stderr.contains("2 subjects") && stderr.contains("0 unstable, 0 not swept"), "{stderr}");
+    // volume_opacity has one float argument: the nominal point, 18 extremes and 4 random points.
+    let row = stdout.lines().find(|l| l.contains("volume_opacity")).unwrap();
+    assert_eq!(row.split_whitespace().nth(2), Some("23"), "{row}");
+}
+
+#[test]
+fn an_unguarded_pow_of_a_negative_base_fails_and_is_named() {
+    let file = shader_file("pow", "float f(float x) { return pow(x, 0.5); }\n");
+    let out = patina(&[&file, "--backend", "cpu", "--random", "4"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(1), "{stdout}{stderr}");
+    // The first negative extreme of the sweep is -1e-30.
+    assert!(
+        stderr.contains("unstable: f(float) ") && stderr.contains("on f64: x=-1e-30 gives result = NaN"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("on f32: x=-1e-30 gives result = NaN"), "{stderr}");
+    assert!(stderr.contains("1 unstable"), "{stderr}");
+}
+
+#[test]
+fn the_guarded_pow_is_clean() {
+    let file = shader_file("guarded", "float f(float x) { return pow(max(x, 0), 0.5); }\n");
+    let out = patina(&[&file, "--backend", "cpu", "--random", "4"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    let row = stdout.lines().find(|l| l.contains("f(float)")).expect("a row for f");
+    // Nine negative extremes and -0 among the 19 systematic points: all finite now.
+    assert!(row.contains("  0  ") && !row.contains("NaN"), "{row}");
+}
+
+#[test]
+fn a_documented_precondition_is_respected() {
+    let bare = shader_file("log_bare", "float h(float x) { return log(x); }\n");
+    assert_eq!(patina(&[&bare, "--backend", "cpu", "--random", "0"]).status.code(), Some(1));
+    let documented = shader_file(
+        "log_documented",
+        "// The logarithm of a positive x.\n// sweep: x in [1e-6, 1e30]\nfloat h(float x) { return log(x); }\n",
+    );
+    let out = patina(&[&documented, "--backend", "cpu", "--random", "0"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+}
+
+#[test]
+fn a_surface_shader_is_swept_with_its_parameters_and_globals() {
+    // Kd is uniform (one value per batch) and s varying: both are swept; s = 0 divides by zero.
+    let file = shader_file("surface", "surface ramp(float Kd = 1) { Ci = Kd / s; Oi = 1; }\n");
+    let dir = scratch("surface");
+    let (md, csv) = (dir.join("t.md"), dir.join("t.csv"));
+    let out = patina(&[
+        &file,
+        "--backend",
+        "cpu",
+        "--random",
+        "4",
+        "--markdown",
+        md.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(1), "{stdout}{stderr}");
+    assert!(stderr.contains("unstable: surface ramp") && stderr.contains(" s=0 "), "{stderr}");
+    let csv = std::fs::read_to_string(csv).expect("the CSV");
+    assert!(csv.starts_with("file,subject,points,non-finite f64,"), "{csv}");
+    assert!(csv.lines().nth(1).is_some_and(|l| l.contains(",surface ramp,")), "{csv}");
+    let md = std::fs::read_to_string(md).expect("the Markdown");
+    assert!(md.lines().nth(2).is_some_and(|l| l.starts_with("| ") && l.contains("| surface ramp |")), "{md}");
+}
+
+#[test]
+fn bad_usage_exits_2_with_one_line() {
+    let out = patina(&[]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = patina(&["--stdlib", "--module", "nosuch"]);
+    let (_, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("no standard-library module nosuch"), "{stderr}");
+}
+
+#[test]
+fn the_guards_the_sweep_found_missing_hold() {
+    // Each of these gave inf or NaN at finite arguments before its guard: gammacorrect(0.5, 1e30)
+    // overflowed f32, filteredpulsetrain at period 0 (and 1e30 / 1e-30) was NaN, and
+    // filteredcolortable with colours of 1e30 and a width of 1e30 periods overflowed.
+    let out = patina(&[
+        "--stdlib",
+        "--module",
+        "pattern",
+        "--module",
+        "color",
+        "--function",
+        "gammacorrect",
+        "--function",
+        "filteredpulsetrain",
+        "--function",
+        "filteredcolortable",
+        "--backend",
+        "cpu",
+        "--random",
+        "0",
+    ]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stderr.contains("4 subjects") && stderr.contains("0 unstable, 0 not swept"), "{stderr}");
+}

@@ -73,3 +73,29 @@ fn compiling_with_more_lights_than_the_limit_prints_one_error_line() {
     assert!(line.contains("65 lights are bound to `plastic`, over the limit of 64"), "{line}");
     assert!(!dir.join("plastic.wgsl").exists());
 }
+
+#[test]
+fn rendering_a_scene_with_more_lights_than_the_limit_prints_one_error_line() {
+    // Refused while compiling, before any device is used: on either backend.
+    let dir = scratch("lights");
+    let scene = dir.join("lights.toml");
+    let mut text =
+        String::from("[output]\nwidth = 8\nheight = 8\n\n[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\n\n");
+    for _ in 0..65 {
+        text.push_str(&format!(
+            "[[light]]\nshader = \"{}\"\nname = \"pointlight\"\n\n",
+            example("lights.sl")
+        ));
+    }
+    text.push_str(&format!("[[object]]\nmesh = \"sphere\"\nshader = \"{}\"\n", example("plastic.sl")));
+    std::fs::write(&scene, text).expect("write the scene");
+    let png = dir.join("out.png");
+    for backend in ["gpu", "cpu"] {
+        let out =
+            patina(&["render", scene.to_str().unwrap(), "--backend", backend, "-o", png.to_str().unwrap()]);
+        assert!(!out.status.success());
+        let line = one_line(&out);
+        assert!(line.contains("65 lights are bound to `plastic`, over the limit of 64"), "{backend}: {line}");
+    }
+    assert!(!png.exists());
+}

@@ -167,3 +167,21 @@ fn a_lost_device_is_an_error_not_a_panic() {
     let error = gpu.compute(&module, "main", &[], &[], 4, 1).expect_err("lost");
     assert!(error.to_string().starts_with("the GPU device was lost"), "{error}");
 }
+
+#[test]
+fn a_pipeline_the_device_refuses_is_an_error_naming_its_draw() {
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let target = Target { width: 4, height: 4, format: TargetFormat::Rgba32Float, clear: [0.0; 4] };
+    // A module without the entry points the draws name: wgpu refuses the second draw's pipeline.
+    let empty = naga::Module::default();
+    let ok = naga::front::wgsl::parse_str(
+        "@vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f { return vec4f(0.0, 0.0, 0.0, 1.0); }
+         @fragment fn fs() -> @location(0) vec4f { return vec4f(1.0); }",
+    )
+    .expect("parses");
+    let draws = [textured_draw(&ok, &[]), textured_draw(&empty, &[])];
+    match gpu.render(&target, &draws) {
+        Err(GpuError::Wgpu(why)) => assert!(why.starts_with("draw 1: "), "{why}"),
+        other => panic!("expected wgpu's error for draw 1, got {other:?}"),
+    }
+}

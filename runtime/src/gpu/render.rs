@@ -6,6 +6,7 @@
 //! culled. The depth buffer (Depth32Float) is cleared to 1.0 and a fragment is kept when its depth
 //! is less than what is stored.
 
+use super::pipeline::Prepared;
 use super::{Gpu, GpuError, TextureData, limits};
 use crate::image::Image;
 
@@ -89,21 +90,25 @@ impl Gpu {
         limits::check_target(target, &limits, bytes_per_pixel)?;
         for (i, draw) in draws.iter().enumerate() {
             check_draw(draw).map_err(|e| GpuError::InvalidInput(format!("draw {i}: {e}")))?;
-            limits::check_draw(draw, target.format, &limits, self.device.features()).map_err(
-                |e| match e {
-                    GpuError::Limit { what, asked, limit, name } => {
-                        GpuError::Limit { what: format!("draw {i}: {what}"), asked, limit, name }
-                    }
-                    e => e,
-                },
-            )?;
+            limits::check_draw(draw, target.format, &limits, self.device.features())
+                .map_err(|e| in_draw(i, e))?;
             for t in draw.textures {
                 t.check()?;
             }
         }
         let row = target.width * bytes_per_pixel;
         let padded_row = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let readback = self.scoped(|| self.encode_render(target, draws, format, padded_row))??;
+        // Each draw's pipeline in a scope of its own, so that a shader the device refuses (too
+        // large, an unsupported feature) is reported with the draw it belongs to.
+        let prepared = draws
+            .iter()
+            .enumerate()
+            .map(|(i, d)| match self.scoped(|| self.prepare(d, format)) {
+                Ok(Ok(p)) => Ok(p),
+                Ok(Err(e)) | Err(e) => Err(in_draw(i, e)),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let readback = self.scoped(|| self.encode_render(target, &prepared, format, padded_row))??;
         let bytes = self.read_buffer(&readback)?;
         let mut pixels = Vec::with_capacity(target.width as usize * target.height as usize);
         for line in bytes.chunks_exact(padded_row as usize).take(target.height as usize) {
@@ -133,7 +138,7 @@ impl Gpu {
     fn encode_render(
         &self,
         target: &Target,
-        draws: &[Draw],
+        prepared: &[Prepared],
         format: wgpu::TextureFormat,
         padded_row: u32,
     ) -> Result<wgpu::Buffer, GpuError> {
@@ -153,7 +158,6 @@ impl Gpu {
         let colour =
             attachment(format, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC);
         let depth = attachment(DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT);
-        let prepared = draws.iter().map(|d| self.prepare(d, format)).collect::<Result<Vec<_>, _>>()?;
         let colour_view = colour.create_view(&Default::default());
         let depth_view = depth.create_view(&Default::default());
         let mut encoder = self.device.create_command_encoder(&Default::default());
@@ -182,7 +186,7 @@ impl Gpu {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            for p in &prepared {
+            for p in prepared {
                 pass.set_pipeline(&p.pipeline);
                 for (index, group) in &p.groups {
                     pass.set_bind_group(*index, group, &[]);
@@ -214,6 +218,19 @@ impl Gpu {
         );
         self.queue.submit([encoder.finish()]);
         Ok(readback)
+    }
+}
+
+/// `e` with the draw it happened in (a lost device belongs to no draw).
+fn in_draw(i: usize, e: GpuError) -> GpuError {
+    match e {
+        GpuError::Limit { what, asked, limit, name } => {
+            GpuError::Limit { what: format!("draw {i}: {what}"), asked, limit, name }
+        }
+        GpuError::Wgpu(why) => GpuError::Wgpu(format!("draw {i}: {why}")),
+        GpuError::OutOfMemory(why) => GpuError::OutOfMemory(format!("draw {i}: {why}")),
+        GpuError::Unsupported(why) => GpuError::Unsupported(format!("draw {i}: {why}")),
+        e => e,
     }
 }
 

@@ -114,3 +114,69 @@ pub(super) fn check_compute(
     let what = || "the output buffer, in bytes".to_string();
     within(what, (output_len as u64).next_multiple_of(4), storage, "max_storage_buffer_binding_size")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn draw<'a>(module: &'a naga::Module, uniforms: &'a [u8], blend: Blend) -> Draw<'a> {
+        Draw {
+            module,
+            vertex_entry: "vs",
+            fragment_entry: "fs",
+            uniforms,
+            textures: &[],
+            attributes: &[],
+            indices: &[0, 1, 2],
+            blend,
+        }
+    }
+
+    #[test]
+    fn the_limits_are_checked_without_a_device() {
+        // WebGPU's default limits, which every WebGPU device offers at the least.
+        let limits = wgpu::Limits::default();
+        let wide = Target { width: 8193, height: 2, format: TargetFormat::Rgba8, clear: [0.0; 4] };
+        assert_eq!(
+            check_target(&wide, &limits, 4).unwrap_err().to_string(),
+            "the render target of 8193x2 pixels: 8193 is over the device's limit of 8192 (max_texture_dimension_2d)"
+        );
+        let fits = Target { width: 8192, ..wide };
+        assert_eq!(check_target(&fits, &limits, 4), Ok(()));
+        let module = naga::Module::default();
+        let uniforms = vec![0u8; 64 * 1024 + 1];
+        let error = check_draw(
+            &draw(&module, &uniforms, Blend::Replace),
+            TargetFormat::Rgba8,
+            &limits,
+            wgpu::Features::empty(),
+        );
+        assert_eq!(
+            error,
+            Err(GpuError::Limit {
+                what: "the uniform block of the shader's parameters, in bytes".into(),
+                asked: 64 * 1024 + 16,
+                limit: 64 * 1024,
+                name: "max_uniform_buffer_binding_size",
+            })
+        );
+    }
+
+    #[test]
+    fn blending_into_float_targets_needs_the_feature() {
+        let limits = wgpu::Limits::default();
+        let module = naga::Module::default();
+        let over = draw(&module, &[], Blend::PremultipliedOver);
+        let without = check_draw(&over, TargetFormat::Rgba32Float, &limits, wgpu::Features::empty());
+        assert!(
+            matches!(without, Err(GpuError::Unsupported(ref why)) if why.contains("FLOAT32_BLENDABLE")),
+            "{without:?}"
+        );
+        let with = check_draw(&over, TargetFormat::Rgba32Float, &limits, wgpu::Features::FLOAT32_BLENDABLE);
+        assert_eq!(with, Ok(()));
+        // Replacing needs no blending, and Rgba8 blends everywhere.
+        let replace = draw(&module, &[], Blend::Replace);
+        assert_eq!(check_draw(&replace, TargetFormat::Rgba32Float, &limits, wgpu::Features::empty()), Ok(()));
+        assert_eq!(check_draw(&over, TargetFormat::Rgba8, &limits, wgpu::Features::empty()), Ok(()));
+    }
+}

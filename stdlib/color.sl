@@ -91,6 +91,7 @@ float _patina_ctable_entry(float n, x, wrap)
 // interpolation"). m <= 1 is exactly colortable; m >= n the table's mean. The level is found by
 // halving m (at most log2 n times, exact), not from floor(log2 m), so the level choice does not
 // depend on the accuracy of log; only the blend weight t = log2 of a number in [1, 2) uses it.
+// sweep: mip length 7; n in {1, 2, 4} (a power of two, with its 2n - 1 levels' entries)
 color mipcolortable(color mip[]; float n, x, w, wrap)
 {
     float m = n * max(w, 0), ni = n;
@@ -119,7 +120,9 @@ color mipcolortable(color mip[]; float n, x, w, wrap)
 //   per entry) of the table repeated (top = 2N, 0 <= a <= b <= 2N) or of the table alone (top = N,
 //   0 <= a <= b <= N): the partial first and last entries weighted exactly, the whole ones between
 //   from the summed-area table, so a narrow box loses nothing to cancellation.
-// filteredcolortable: the box filter (see docs/stdlib/color.md for the cases).
+// filteredcolortable: the box filter (see docs/stdlib/color.md for the cases); a box of 2^24 periods
+//   or more is the mean of the table (the remainder is below f32's resolution, and periods times
+//   the sum of large colours would overflow).
 #define PATINA_COLOR_TABLE(N) \
 color colortable(color table[N]; float x, wrap) \
 { \
@@ -162,6 +165,8 @@ color filteredcolortable(color table[N]; color sat[N]; float x, w, wrap) \
         float ka = min(floor(a), 2 * N - 1); \
         if (periods == 0 && ka == min(floor(b), 2 * N - 1)) \
             return table[ka >= N ? ka - N : ka]; \
+        if (periods >= 16777216) \
+            return sat[N - 1] / N; \
         return (periods * sat[N - 1] + _patina_ctable_integral(table, sat, a, b, 2 * N)) / (periods * N + (b - a)); \
     } \
     float c = N * x; \

@@ -102,6 +102,7 @@ float lattice_open_unit(uint h)
 // The Catmull-Rom cubic through k0..k3 on the span k1..k2, t in [0, 1]: Peachey's spline
 // (L1390-1440) specialised to four knots as L2326 suggests, with his basis coefficients
 // (CR00..CR33) and Horner's rule. t = 0 gives k1, t = 1 gives k2; C1 across spans.
+// sweep: t in [0, 1]
 float lattice_catrom4(float t, k0, k1, k2, k3)
 {
     float c3 = -0.5 * k0 + 1.5 * k1 - 1.5 * k2 + 0.5 * k3;
@@ -111,6 +112,7 @@ float lattice_catrom4(float t, k0, k1, k2, k3)
 }
 
 // a + t (b - a): Peachey's LERP (L2431).
+// sweep: t in [0, 1] (the fraction between two knots)
 float lattice_lerp(float t, a, b)
 {
     return a + t * (b - a);

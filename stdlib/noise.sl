@@ -60,18 +60,21 @@
 // Perlin's fade curve 6t^5 - 15t^4 + 10t^3 (T&M L8438), in the reference's Horner form
 // t * t * t * (t * (t * 6 - 15) + 10). fade(0) = 0, fade(1) = 1; first and second derivatives
 // are 0 at both ends, so noise is C2 across cell faces.
+// sweep: t in [0, 1] (the fade is used on a cell fraction)
 float perlin_fade(float t)
 {
     return t * t * t * (t * (t * 6 - 15) + 10);
 }
 
 // The derivative of perlin_fade: 30 t^2 (t - 1)^2, written 30 t^2 (t (t - 2) + 1).
+// sweep: t in [0, 1]
 float perlin_dfade(float t)
 {
     return 30 * t * t * (t * (t - 2) + 1);
 }
 
 // The reference's lerp: a + t * (b - a) (not `mix`, which rounds differently).
+// sweep: t in [0, 1]
 float perlin_lerp(float t, a, b)
 {
     return a + t * (b - a);
@@ -159,6 +162,7 @@ int perlin_pnext(int c0; float P)
 // values modulo 256 matter) at the fraction (x, y, z) in [0, 1]^3: ImprovedNoise.noise's hash and
 // blend, operation for operation, with the cell's upper corners given instead of X + 1 (the same
 // table entries, since the table is indexed modulo 256), so that periodic noise can wrap them.
+// sweep: x in [0, 1]; y in [0, 1]; z in [0, 1]
 float perlin_improved_lattice(int X0, X1, Y0, Y1, Z0, Z1; float x, y, z)
 {
     constant int perlin_p[256] = PATINA_PERLIN_PERMUTATION;
@@ -213,6 +217,7 @@ float improved_noise(float x, y, z)
 // 1D gradients of perlin_grad1, hashed as the 3D noise hashes (X, 0, 0): p[p[p[X]]].
 // 0 at the integers; C2; period 256. Range [-4, 4], attained (at 155.5 and 148.5: gradients 8
 // and -8 on both sides of a cell centre; the bound for any of the 16 gradients).
+// sweep: x in [0, 1] (the fraction within the cell)
 float perlin_improved_noise1(int X0, X1; float x)
 {
     constant int perlin_p[256] = PATINA_PERLIN_PERMUTATION;
@@ -227,6 +232,7 @@ float perlin_improved_noise1(int X0, X1; float x)
 // (0, +-1): none is zero, so the slice is a full 2D gradient noise. 0 at the lattice points; C2;
 // period 256. Range [-0.8919, 1]: measured over every one of the 256^2 cells; 1 (attained at
 // (136.5, 64.5)) is also the bound for any choice of the gradients.
+// sweep: x in [0, 1]; y in [0, 1] (the fractions within the cell)
 float perlin_improved_noise2(int X0, X1, Y0, Y1; float x, y)
 {
     constant int perlin_p[256] = PATINA_PERLIN_PERMUTATION;
@@ -244,6 +250,7 @@ float perlin_improved_noise2(int X0, X1, Y0, Y1; float x, y)
 // perlin_grad4. 0 at the lattice points; C2; period 256. Range: at least [-1.3448, 1.2542]
 // (local maximisation from the 15 000 best of 2e7 random points: the whole 256^4 period cannot
 // be searched); the bound for any choice of the gradients is 1.5 (at a cell's centre).
+// sweep: x in [0, 1]; y in [0, 1]; z in [0, 1]; w in [0, 1] (the fractions within the cell)
 float perlin_improved_noise4(int X0, X1, Y0, Y1, Z0, Z1, W0, W1; float x, y, z, w)
 {
     constant int perlin_p[256] = PATINA_PERLIN_PERMUTATION;
@@ -596,6 +603,7 @@ float perlin_noise3(point p)
 // fractional, so the three lattices' zeros do not coincide). Each component in [-1, 1]. The
 // offsets are added after the cell is split off (the fraction gets 0.33 or 0.77 and carries into
 // the integer cell index), so large coordinates lose nothing to them.
+// sweep: fx in [0, 1]; fy in [0, 1]; fz in [0, 1]; of in [0, 1] (fractions within the cell, and the fractional offset)
 float perlin_improved_offset(float cx, cy, cz, fx, fy, fz; int oi; float of)
 {
     float gx = fx + of, gy = fy + of, gz = fz + of;
@@ -669,6 +677,7 @@ vector dsnoise3(point p)
 // sin and cos, so any finite angle works. Scaled by PATINA_SNOISE_SCALE and clamped to [-1, 1]:
 // the bound for any rotation is 1.0385 (0.9649 * 1.0385 = 1.002), so the clamp acts at most in
 // a band of 0.002 near the extremes (never in the tests' samples).
+// sweep: x in [-1, 1]; y in [-1, 1]; z in [-1, 1]; c in [-1, 1]; s in [-1, 1] (offsets from a corner, and the angle's cosine and sine)
 float perlin_flow_grad(int hash; float x, y, z, c, s)
 {
     int h = hash & 15;

@@ -41,14 +41,15 @@ float boxstep(float a, b, x)
 }
 
 // Gamma correction: x^(1/gamma) (L1504). For x <= 0 it is 0; gamma <= 0 is the limit
-// gamma -> 0+ on [0, 1], step(1, x) (errata H-D7: no division by zero).
+// gamma -> 0+ on [0, 1], step(1, x) (errata H-D7: no division by zero). A result beyond f32's
+// range (x > 1 with a small gamma) is 1e38.
 float gammacorrect(float gamma, x)
 {
     if (x <= 0)
         return 0;
     if (gamma <= 0)
         return step(1, x);
-    return pow(x, 1 / gamma);
+    return min(pow(x, 1 / gamma), 1e38);
 }
 
 // Perlin's bias: x^(ln b / ln 0.5) (Peachey L1522; Perlin L8126-8138), with x and b clamped to
@@ -173,15 +174,18 @@ float _patina_pulsetrain_integral(float e, t)
 // narrower filter, which meets at most three pulses, the sum of the three filtered pulses
 // (k + e, k + 1 - e) for k = -1, 0, 1, which stays exact as w -> 0 where the difference of
 // integrals would cancel. pulsetrain(edge, period, x) for w <= 0; tends to the duty cycle
-// 1 - 2e as w grows.
+// 1 - 2e as w grows. Period 0 is pulsetrain's; where x / period or w / period overflows f32
+// (1e30 over 1e-30), x is taken as the start of a period and the filter as infinitely wide.
 float filteredpulsetrain(float edge, period, x, w)
 {
-    if (w <= 0)
+    if (w <= 0 || period == 0)
         return pulsetrain(edge, period, x);
     float e = clamp(edge / period, 0, 0.5);
     float t = x / period;
-    float c = t - floor(t);
+    float c = abs(t) < 1e38 ? t - floor(t) : 0;
     float h = w / (2 * period);
+    if (abs(h) >= 1e38)
+        return 1 - 2 * e;
     if (h >= 0.5)
         return (_patina_pulsetrain_integral(e, c + h) - _patina_pulsetrain_integral(e, c - h)) / (2 * h);
     float fw = 2 * h;

@@ -293,6 +293,7 @@ float hart_filterwidth(vector grad; float filterwidth)
 
 // The piecewise-linear colour ramp through clut[0 .. m] at x in segment units (knot j at x = j;
 // x outside [0, m] extrapolates an end segment, which the callers avoid).
+// sweep: clut length 4; m in [0, 3] (m at most the table's length less one)
 color hart_ramp_at(float x; color clut[]; float m)
 {
     float j = clamp(floor(x), 0, max(m - 1, 0));
@@ -302,6 +303,7 @@ color hart_ramp_at(float x; color clut[]; float m)
 
 // The ramp's integral from 0 to y in segment units, y in [0, m]: the whole segments' trapezoids
 // plus the part of the segment holding y.
+// sweep: clut length 4; m in [0, 3]
 color hart_ramp_integral(float y; color clut[]; float m)
 {
     float j = clamp(floor(y), 0, max(m - 1, 0));
@@ -317,6 +319,7 @@ color hart_ramp_integral(float y; color clut[]; float m)
 }
 
 // The ramp with the mode's extension at x in segment units: modulo m, or clamped to [0, m].
+// sweep: clut length 4; m in [0, 3]
 color hart_ramp_ext(float x; color clut[]; float m; float mode)
 {
     float y = mode == HART_MOD ? x - m * floor(x / m) : clamp(x, 0, m);
@@ -335,6 +338,7 @@ color hart_ramp_ext(float x; color clut[]; float m; float mode)
 // [0, 1] in the clamp mode). As the width grows the result tends to the ramp's mean (modulo) or
 // to the mean of the end colours (clamp). n below 2 gives clut[0]. Widths are taken as |width|,
 // at most 1e30.
+// sweep: clut length 4; n in [0, 4] (n at most the table's length)
 color hart_colormap(float f, width; float mode; color clut[]; float n)
 {
     float m = max(floor(n) - 1, 0);
@@ -371,6 +375,7 @@ color hart_colormap(float f, width; float mode; color clut[]; float n)
 }
 
 // The unfiltered colour map: hart_colormap at width 0.
+// sweep: clut length 4; n in [0, 4]
 color hart_colormap(float f; float mode; color clut[]; float n)
 {
     return hart_colormap(f, 0, mode, clut, n);

@@ -30,13 +30,14 @@ pub struct Options {
     /// The seed of the random combinations.
     pub seed: u64,
     /// The most iterations any loop of the interpreter may run (a loop the arguments make
-    /// endless is reported, and then not run on the GPU).
+    /// endless is reported, and then not run on the GPU); by default the interpreter's own,
+    /// which is also lavapipe's loop limit.
     pub budget: u64,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { random: 64, seed: 0x5EED, budget: 1 << 20 }
+        Options { random: 64, seed: 0x5EED, budget: patina_compiler::backend::cpu::eval::DEFAULT_BUDGET }
     }
 }
 

@@ -314,7 +314,7 @@ fn more_lights_than_the_limit_are_refused_and_the_limit_itself_compiles() {
     assert_eq!(d.code.as_str(), "E0704");
     assert_eq!(d.message, "65 lights are bound to `lit`, over the limit of 64");
     assert!(surface.sources.text(d.primary_span()).starts_with("surface lit()"));
-    assert!(d.labels.iter().any(|l| l.message == "light 65 (`one`) is over the limit"));
+    assert_eq!(d.notes, ["light 65 (`one`) is the first over the limit"]);
 }
 
 #[test]

@@ -32,10 +32,8 @@ pub(crate) fn check_light_count(surface: &Shader, lights: &[&Shader]) -> Result<
         surface.span,
         "this shader's light loops would be unrolled over every light",
     )
-    .with_label(
-        first_over.span,
-        format!("light {} (`{}`) is over the limit", MAX_LIGHTS + 1, first_over.name),
-    )
+    // A note, not a label: the lights are usually compiled from other files than the surface.
+    .with_note(format!("light {} (`{}`) is the first over the limit", MAX_LIGHTS + 1, first_over.name))
     .with_help("merge lights into fewer light shaders (a light shader may sum several sources)"))
 }
 

@@ -289,7 +289,7 @@ pub fn width(ty: Type) -> usize {
 
 /// A value as the kernel's input word: floats as f32 bits, integers as their 32 bits, booleans
 /// as 0 or 1.
-fn bits(x: f64, base: Base) -> u32 {
+pub fn bits(x: f64, base: Base) -> u32 {
     match base {
         Base::Int => (x as i64) as i32 as u32,
         Base::Uint => x as u32,

@@ -327,3 +327,33 @@ fn an_array_over_the_length_limit_is_refused_at_its_size() {
     assert_eq!(at(&checked, d), ("100000000".to_string(), src.find("100000000").unwrap()));
     assert!(!check("surface t() { float table[4096]; table[3] = 1; Ci = table[3]; }").has_errors());
 }
+
+#[test]
+fn statements_nested_through_inlined_calls_stop_at_the_combined_limit() {
+    // Twenty functions, each nesting 200 `if`s around its call of the next: every function is
+    // under the syntax's depth limit, but inlined they nest 4000 deep (this compiled for minutes).
+    let n = 20;
+    let mut src = format!("float f{n}(float x) {{ return x; }}\n");
+    for i in (0..n).rev() {
+        src.push_str(&format!(
+            "float f{i}(float x) {{ float y = x;\n{}y = f{}(y);\n return y; }}\n",
+            "if (y > 0) ".repeat(200),
+            i + 1
+        ));
+    }
+    src.push_str("surface t() { Ci = f0(s); }\n");
+    let start = Instant::now();
+    let checked = check(&src);
+    let d = only_error(&checked);
+    assert_eq!(d.code.as_str(), "E0521");
+    assert_eq!(d.message, "statements nested more than 512 deep with calls inlined");
+    // Levels: f0's inlined body 1, its `if` bodies 2 to 201, f1's body 202, ..., f2's body 403,
+    // the body of f2's `if` number k (from 0) 404 + k: the body of `if` 109, which is `if` 110,
+    // would be level 513.
+    let f2 = src.find("float f2(").unwrap();
+    let (text, start_at) = at(&checked, d);
+    assert!(text.starts_with("if (y > 0)"), "{text}");
+    assert_eq!(start_at, f2 + src[f2..].find("if").unwrap() + 110 * "if (y > 0) ".len());
+    assert!(d.labels.iter().any(|l| l.message == "in this call of `f2`"));
+    assert!(start.elapsed() < Duration::from_secs(5), "took {:?}", start.elapsed());
+}

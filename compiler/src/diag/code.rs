@@ -171,7 +171,8 @@ codes! {
     InvalidQualifier = "E0519",
     /// An assignment or `++` inside `?:`, `&&` or `||`, whose evaluation would change.
     EffectInCondition = "E0520",
-    /// Calls inlined too deeply, or a shader whose inlined code grows past the size limit.
+    /// Calls inlined too deeply, statements nested too deeply once calls are inlined, or a shader
+    /// whose inlined code grows past the size limit.
     InlineLimit = "E0521",
 
     // Rates.

@@ -24,6 +24,12 @@ pub const MAX_INLINE_DEPTH: usize = 64;
 /// thirty levels deep, would have 2^30 copies of the innermost one and stops here instead.
 pub const MAX_SHADER_EXPRESSIONS: usize = 500_000;
 
+/// Statements nested deeper than this in a shader with its calls inlined are refused: each source
+/// function keeps under the syntax's nesting limit, but a call inside nested statements nests the
+/// callee's statements deeper still, and later stages take time that grows faster than linearly
+/// with the depth. An `else if` chain does not count (its length has its own limit).
+pub const MAX_INLINED_NESTING: usize = 512;
+
 /// A function that could be called: a user function or a built-in overload.
 #[derive(Copy, Clone)]
 enum Candidate<'a> {
@@ -262,6 +268,29 @@ impl Lowerer<'_> {
             // A void call used as a statement: give the caller something to ignore.
             None => self.push_expr(ExprKind::Construct(Vec::new()), Type::VOID, span),
         })
+    }
+
+    /// Enters a nested statement body (or an inlined call's) at `span`: false, reported once per
+    /// shader, past [`MAX_INLINED_NESTING`]; the caller leaves with `self.nesting -= 1` when true.
+    pub(super) fn enter_nested(&mut self, span: Span) -> bool {
+        if self.nesting >= MAX_INLINED_NESTING {
+            // Functions checked on their own would report the same chain again.
+            if !self.standalone && !std::mem::replace(&mut self.nesting_reported, true) {
+                self.error(
+                    Diagnostic::error(
+                        Code::InlineLimit,
+                        format!("statements nested more than {MAX_INLINED_NESTING} deep with calls inlined"),
+                        span,
+                        "nesting limit reached here",
+                    )
+                    .with_note("a call is inlined where it is made: a call inside nested statements nests the function's statements deeper still")
+                    .with_help("move the call out of the nested statements, or combine the conditions with `&&`"),
+                );
+            }
+            return false;
+        }
+        self.nesting += 1;
+        true
     }
 
     /// Whether a call of `f` at `span` may be inlined: reports [`MAX_INLINE_DEPTH`] at the call

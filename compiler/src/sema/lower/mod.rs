@@ -106,6 +106,10 @@ pub(super) struct Lowerer<'a> {
     result_type: Type,
     /// Whether the shader's size limit (`call::MAX_SHADER_EXPRESSIONS`) has been reported.
     inline_limit_reported: bool,
+    /// How deep the statement being lowered is nested, inlined calls included.
+    nesting: usize,
+    /// Whether `call::MAX_INLINED_NESTING` has been reported.
+    nesting_reported: bool,
 }
 
 /// Lowers one shader; `None` if it had errors (they have been reported).
@@ -234,6 +238,8 @@ impl<'a> Lowerer<'a> {
             result_local: None,
             result_type,
             inline_limit_reported: false,
+            nesting: 0,
+            nesting_reported: false,
         }
     }
 }

@@ -37,9 +37,13 @@ impl Lowerer<'_> {
         self.scopes.pop();
     }
 
+    /// The body of a nested statement, one level deeper (empty past the nesting limit).
     fn sub_block(&mut self, s: &ast::Stmt) -> Block {
         let mut out = Vec::new();
-        self.block(std::slice::from_ref(s), &mut out);
+        if self.enter_nested(s.span) {
+            self.block(std::slice::from_ref(s), &mut out);
+            self.nesting -= 1;
+        }
         out
     }
 
@@ -145,7 +149,16 @@ impl Lowerer<'_> {
             StmtKind::If { cond, then, otherwise } => {
                 let cond = self.expr(cond, Some(Type::BOOL), out).and_then(|c| self.condition(c));
                 let then = self.sub_block(then);
-                let otherwise = otherwise.as_ref().map(|o| self.sub_block(o)).unwrap_or_default();
+                // An `else if` chain is as deep as it is long; its length has its own limit.
+                let otherwise = match otherwise.as_deref() {
+                    Some(o @ ast::Stmt { kind: StmtKind::If { .. }, .. }) => {
+                        let mut out = Vec::new();
+                        self.block(std::slice::from_ref(o), &mut out);
+                        out
+                    }
+                    Some(o) => self.sub_block(o),
+                    None => Vec::new(),
+                };
                 if let Some(cond) = cond {
                     out.push(Stmt::If { cond, then, otherwise });
                 }
@@ -491,8 +504,11 @@ impl Lowerer<'_> {
             guarded_from: guarded,
         });
         let stmts = &f.body.stmts;
-        for s in stmts {
-            self.stmt(s, &mut body);
+        if self.enter_nested(call_span) {
+            for s in stmts {
+                self.stmt(s, &mut body);
+            }
+            self.nesting -= 1;
         }
         self.frames.pop();
         self.loops = saved_loops;

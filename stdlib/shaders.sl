@@ -78,6 +78,7 @@ surface constant_()
 
 // Lambertian: Ci = Os * Cs * (Ka * ambient() + Kd * diffuse(Nf)), Nf the unit normal facing the
 // eye.
+// sweep: Ka in [0, 1e4]; Kd in [0, 1e4] (non-negative coefficients: products of two values of 1e30 overflow f32)
 surface matte(float Ka = 1; float Kd = 1)
 {
     normal Nf = faceforward(normalize(N), I);
@@ -86,6 +87,7 @@ surface matte(float Ka = 1; float Kd = 1)
 }
 
 // Metal: Ci = Os * Cs * (Ka * ambient() + Ks * specular(Nf, V, roughness)), V = -normalize(I).
+// sweep: Ka in [0, 1e4]; Ks in [0, 1e4]
 surface metal(float Ka = 1; float Ks = 1; float roughness = .1)
 {
     normal Nf = faceforward(normalize(N), I);
@@ -97,6 +99,7 @@ surface metal(float Ka = 1; float Ks = 1; float roughness = .1)
 // Shiny metal: metal plus, in Appendix A, Kr * environment(texturename, reflect(I, Nf)). Without
 // environment maps (not implemented on either backend) it is metal; Kr and texturename are kept
 // so that scenes written for the standard shader load.
+// sweep: Ka in [0, 1e4]; Ks in [0, 1e4]; Kr in [0, 1e4]
 surface shinymetal(float Ka = 1; float Ks = 1; float Kr = 1; float roughness = .1;
                    string texturename = "")
 {
@@ -109,6 +112,7 @@ surface shinymetal(float Ka = 1; float Ks = 1; float Kr = 1; float roughness = .
 // Plastic: Ci = Os * (Cs * (Ka * ambient() + Kd * diffuse(Nf)) + specularcolor * Ks *
 // specular(Nf, V, roughness)) (the specular term is not multiplied by Cs; Peachey's printed
 // parentheses, stdlib-catalogue §3.6, are not followed).
+// sweep: Ka in [0, 1e4]; Kd in [0, 1e4]; Ks in [0, 1e4]; specularcolor in [0, 1e4]
 surface plastic(float Ks = .5; float Kd = .5; float Ka = 1; float roughness = .1;
                 color specularcolor = 1)
 {
@@ -123,6 +127,7 @@ surface plastic(float Ks = .5; float Kd = .5; float Ka = 1; float roughness = .1
 // texture must be bound by the scene (a file, or a generated table such as "checker:8");
 // Appendix A skips the lookup when texturename is "" (its default); this version always looks a
 // texture up, by default the generated checker table "checker:8".
+// sweep: Ka in [0, 1e4]; Kd in [0, 1e4]; Ks in [0, 1e4]; specularcolor in [0, 1e4]
 surface paintedplastic(float Ks = .5; float Kd = .5; float Ka = 1; float roughness = .1;
                        color specularcolor = 1; string texturename = "checker:8")
 {

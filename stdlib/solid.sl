@@ -293,7 +293,7 @@ float hart_filterwidth(vector grad; float filterwidth)
 
 // The piecewise-linear colour ramp through clut[0 .. m] at x in segment units (knot j at x = j;
 // x outside [0, m] extrapolates an end segment, which the callers avoid).
-// sweep: clut length 4; m in [0, 3] (m at most the table's length less one)
+// sweep: clut length 4; m in {0, 1, 2, 3} (a whole number of segments, at most the table's length less one)
 color hart_ramp_at(float x; color clut[]; float m)
 {
     float j = clamp(floor(x), 0, max(m - 1, 0));
@@ -303,7 +303,7 @@ color hart_ramp_at(float x; color clut[]; float m)
 
 // The ramp's integral from 0 to y in segment units, y in [0, m]: the whole segments' trapezoids
 // plus the part of the segment holding y.
-// sweep: clut length 4; m in [0, 3]
+// sweep: clut length 4; m in {0, 1, 2, 3}; y in [0, 3]
 color hart_ramp_integral(float y; color clut[]; float m)
 {
     float j = clamp(floor(y), 0, max(m - 1, 0));
@@ -318,11 +318,12 @@ color hart_ramp_integral(float y; color clut[]; float m)
     return acc + t * clut[kj] + (0.5 * t * t) * (clut[kj + 1] - clut[kj]);
 }
 
-// The ramp with the mode's extension at x in segment units: modulo m, or clamped to [0, m].
-// sweep: clut length 4; m in [0, 3]
+// The ramp with the mode's extension at x in segment units: modulo m, or clamped to [0, m]. With
+// m = 0 (one knot) both are clut[0].
+// sweep: clut length 4; m in {0, 1, 2, 3}
 color hart_ramp_ext(float x; color clut[]; float m; float mode)
 {
-    float y = mode == HART_MOD ? x - m * floor(x / m) : clamp(x, 0, m);
+    float y = mode == HART_MOD ? (m > 0 ? x - m * floor(x / m) : 0) : clamp(x, 0, m);
     return hart_ramp_at(y, clut, m);
 }
 

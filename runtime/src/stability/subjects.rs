@@ -4,7 +4,8 @@
 //! A function is called from a wrapper surface shader appended to its file, one input per
 //! parameter (`a0`, `a1`, .., array elements `a2_0`, `a2_1`, ..) and its result as the output
 //! `result` (an `output` parameter's final value as `out1`, ..). A surface shader runs as it is,
-//! with its parameters and `P`, `N`, `I`, `s`, `t` as inputs and `Ci`, `Oi` as outputs.
+//! with its parameters and `P`, `N`, `I`, `s`, `t` as inputs (`Cs` and `Os` white, not swept)
+//! and `Ci`, `Oi` as outputs.
 
 use patina_compiler::backend::cpu::{Binding, CpuProgram};
 use patina_compiler::ir::Shader;
@@ -224,6 +225,14 @@ fn shader(file: &str, text: &str, s: &ShaderDef, pre: &[Precondition]) -> Subjec
                     name,
                     preconditions::for_param(pre, name),
                 ));
+            }
+        }
+        // The surface colour and opacity are a renderer's defaults, white and opaque, on every
+        // backend (unset, the interpreter and the kernel would start them differently).
+        if renderman {
+            for name in ["Cs", "Os"] {
+                let white = preconditions::Constraint { values: Some(vec![1.0]), ..Default::default() };
+                subject.args.push(Arg::new(name.to_string(), Kind::Color, name, white));
             }
         }
         subject.outputs = if renderman { vec!["Ci".into(), "Oi".into()] } else { vec!["result".into()] };

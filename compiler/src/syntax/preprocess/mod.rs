@@ -67,6 +67,7 @@ pub fn preprocess(
         produced: 0,
         exhausted: false,
         total: 0,
+        too_deep: false,
     };
     let at = Span::new(root, 0..0);
     if pp.too_large(&pp.sources.file(root).name.clone(), pp.sources.file(root).text.len(), at) {
@@ -89,6 +90,9 @@ struct Preprocessor<'a> {
     exhausted: bool,
     /// Bytes of source read so far, the root file's and every inclusion's.
     total: usize,
+    /// Whether an include went past [`MAX_INCLUDE_DEPTH`]: a file that includes itself twice
+    /// would otherwise be read 2^64 times, with an error at every leaf.
+    too_deep: bool,
 }
 
 fn active(conds: &[Conditional]) -> bool {
@@ -606,7 +610,12 @@ impl Preprocessor<'_> {
             );
             return;
         }
+        // Past the depth limit once, the includes that follow are skipped without a report.
+        if self.too_deep {
+            return;
+        }
         if depth >= MAX_INCLUDE_DEPTH {
+            self.too_deep = true;
             self.diags.push(
                 Diagnostic::error(
                     Code::IncludeDepth,

@@ -64,7 +64,7 @@ use proptest::test_runner::{Config, RngSeed, TestCaseError, TestRunner};
 use support::Rng;
 
 /// Programs in a normal run (`cargo test`).
-const DEFAULT_CASES: u32 = 150;
+const DEFAULT_CASES: u32 = 100;
 /// The proptest seed unless `PATINA_GENERATED_SEED` sets one.
 const DEFAULT_SEED: u64 = 0x5eed_0011;
 /// Batches of uniform values per program.
@@ -82,7 +82,27 @@ struct Totals {
     worst: f64,
     /// The same over the exact outputs' components only.
     worst_exact: f64,
+    /// How many programs use each of [`FEATURES`].
+    features: [usize; FEATURES.len()],
 }
+
+/// Source fragments whose frequency the summary reports (what the programs cover).
+const FEATURES: [&str; 14] = [
+    "surface shader",
+    "illuminance",
+    "integrate(",
+    "perlight",
+    "output float",
+    "if (",
+    "for (",
+    "while (",
+    "break;",
+    "continue;",
+    ") return",
+    "] = {",
+    "#include",
+    "noise(",
+];
 
 /// The bound on |g − c32| (see the module documentation).
 fn bound(c32: f64, c64: f64) -> f64 {
@@ -229,6 +249,13 @@ fn run(gpu: &Gpu, program: &generator::Program, totals: &mut Totals) -> Result<(
         }
     }
     totals.programs += 1;
+    if totals.programs.is_multiple_of(1000) {
+        // Progress of a long (extended) run.
+        eprintln!("{} programs so far: {totals:?}", totals.programs);
+    }
+    for (count, feature) in totals.features.iter_mut().zip(FEATURES) {
+        *count += usize::from(program.source.contains(feature));
+    }
     if failures.is_empty() {
         Ok(())
     } else {
@@ -364,6 +391,8 @@ fn generated_programs_compile_validate_and_agree() {
         t.worst,
         t.worst_exact
     );
+    let used: Vec<String> = FEATURES.iter().zip(t.features).map(|(f, n)| format!("`{f}` {n}")).collect();
+    eprintln!("programs using: {}", used.join(", "));
     if let Err(e) = result {
         panic!("{e}");
     }

@@ -248,3 +248,26 @@ fn light_construct_arguments_are_converted_and_counted() {
     let messages: Vec<String> = checked.diagnostics.iter().map(|d| d.message.clone()).collect();
     assert!(messages.iter().any(|m| m.contains("`illuminate(position, axis, angle)`")), "{messages:?}");
 }
+
+#[test]
+fn nested_integrate_sums_over_every_light() {
+    // The inner `integrate` inside a per-light value is the sum over all lights, not the outer
+    // light's own term (found by runtime/tests/generated.rs: the interpreter gave half of this
+    // with two lights, the GPU the sum).
+    let src = "surface shader float4 t(primitive group float k) {
+        perlight float3 a = {1, 2, 3};
+        perlight float b = rgb(Cl)[0];
+        return {integrate(integrate(a) * b), integrate(b)};
+    }";
+    let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
+    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
+    let binding = Binding { lights: vec![LightBinding::default(); 2], strings: vec![] };
+    let program = CpuProgram::compile(&checked.program.shaders[0], &binding).unwrap();
+    let mut eval = Evaluator::<f64>::new(&program);
+    for (k, b) in [0.25, 0.5].iter().enumerate() {
+        eval.set(&format!("Cl[{k}]"), &[*b, 0.0, 0.0, 1.0]).unwrap();
+    }
+    let out = eval.eval_points(1, &[], &["result"]).unwrap();
+    // integrate(a) = 2a; sum over j of 2a * b_j = 2a * 0.75.
+    assert_eq!(out[0], vec![1.5, 3.0, 4.5, 0.75]);
+}

@@ -335,3 +335,18 @@ fn integer_division_by_a_literal_zero() {
         }";
     run_shader(&gpu, src, &[], &[("a", tol::EXACT), ("b", tol::EXACT), ("c", tol::EXACT)]);
 }
+
+#[test]
+fn nested_integrate_on_both() {
+    // An `integrate` inside a per-light value sums over every light on both backends (found by
+    // `generated.rs`: the interpreter used the outer light's term).
+    let Some(gpu) = gpu::for_tests() else { return };
+    let src = "
+        surface shader float4 nested(vertex float4 uv) {
+            perlight float3 a = rgb(Cl) * uv[0];
+            perlight float b = dot(L, {0, 0, 1});
+            return {integrate(integrate(a) * b), uv[1]};
+        }";
+    let lights = vec![LightBinding::default(), LightBinding::default(), LightBinding::default()];
+    run_shader(&gpu, src, &lights, &[("result", tol::REASSOCIATED)]);
+}

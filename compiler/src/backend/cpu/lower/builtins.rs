@@ -223,17 +223,16 @@ impl Lower<'_> {
         })
     }
 
-    /// `integrate(x)`: the sum of a per-light value over the bound lights.
+    /// `integrate(x)`: the sum of a per-light value over the bound lights, also where it is
+    /// itself part of a per-light value (`integrate(integrate(a) * b)`: the inner sum is over
+    /// every light, as in the WGSL backend, not the outer light's term).
     fn integrate(&mut self, arg: ExprId) -> Result<Val, Diagnostic> {
-        if self.light.is_some() {
-            return self.expr(arg);
-        }
         let n = self.shader.expr(arg).ty.base.components() as usize;
         let mut sum = vec![self.emit.float(0.0); n];
         for k in 0..self.binding.lights.len() {
-            self.light = Some(k);
+            let outer = self.light.replace(k);
             let v = self.expr(arg);
-            self.light = None;
+            self.light = outer;
             sum = self.zip(Binary::Add, &sum, v?.floats());
         }
         Ok(Val::Float(sum))

@@ -126,6 +126,7 @@ fn render_gradient_from_uniform_and_attribute() {
     let attributes = [attribute(0, 2, &QUAD), attribute(1, 1, &[0.0, 1.0, 1.0, 0.0])];
     let draw = Draw {
         module: &m,
+        fingerprint: None,
         vertex_entry: "vs",
         fragment_entry: "fs",
         uniforms: &uniforms,
@@ -157,6 +158,7 @@ fn flat_draw<'a>(
 ) -> Draw<'a> {
     Draw {
         module: m,
+        fingerprint: None,
         vertex_entry: "vs",
         fragment_entry: "fs",
         uniforms: &[],
@@ -252,6 +254,7 @@ fn render_textured(gpu: &Gpu, texture: TextureData, fragment_entry: &str) -> Ima
     let attributes = [attribute(0, 2, &QUAD), attribute(1, 2, &QUAD_UV)];
     let draw = Draw {
         module: &m,
+        fingerprint: None,
         vertex_entry: "vs",
         fragment_entry,
         uniforms: &[],
@@ -313,6 +316,7 @@ fn volume_texture_samples_the_right_slice() {
     let attributes = [attribute(0, 2, &QUAD), attribute(1, 3, &uvw)];
     let draw = Draw {
         module: &m,
+        fingerprint: None,
         vertex_entry: "vs",
         fragment_entry: "fs",
         uniforms: &[],

@@ -63,6 +63,7 @@ fn a_supersampled_target_over_the_texture_limit_is_an_error_naming_the_image() {
 fn textured_draw<'a>(module: &'a naga::Module, texture: &'a [TextureData]) -> Draw<'a> {
     Draw {
         module,
+        fingerprint: None,
         vertex_entry: "vs",
         fragment_entry: "fs",
         uniforms: &[],

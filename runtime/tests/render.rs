@@ -213,3 +213,28 @@ fn library_noise_under_a_varying_condition_renders_alike() {
         right.iter().copied().fold(f32::MIN, f32::max) - right.iter().copied().fold(f32::MAX, f32::min);
     assert!(spread > 0.2, "the noise varies on the right: spread {spread}");
 }
+
+#[test]
+fn pipelines_are_kept_per_device_and_reused_with_fresh_uniforms() {
+    // Rendering again makes no new pipeline and draws the same picture; another value of a
+    // parameter still reaches the shader (a kept pipeline gets the draw's own uniforms, or a
+    // specialized module gets a pipeline of its own), and the GPU still agrees with the CPU.
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let mut s = scene("soft_sphere", 24, 24);
+    let prepared = render::prepare(&s).unwrap();
+    let first = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap();
+    let kept = gpu.kept_pipelines();
+    assert_eq!(kept, 1, "one object, one pipeline");
+    let again = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap();
+    assert_eq!(gpu.kept_pipelines(), kept);
+    assert_eq!(first.pixels, again.pixels);
+
+    s.objects[0].surface.params.insert("kappa".into(), patina_runtime::scene::ParamValue::Number(12.0));
+    let denser = render::prepare(&s).unwrap();
+    let gpu_image = render::render(&denser, Backend::Gpu, Some(&gpu)).unwrap();
+    let cpu_image = render::render(&denser, Backend::Cpu, None).unwrap();
+    assert_ne!(gpu_image.pixels, first.pixels, "kappa 12 must draw a denser sphere");
+    let t = Thresholds::default();
+    let c = compare(&cpu_image, &gpu_image, &t).unwrap();
+    assert!(c.passes(&t), "{c:?}");
+}

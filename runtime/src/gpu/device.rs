@@ -14,6 +14,8 @@ pub struct Gpu {
     uncaptured: Arc<Mutex<Option<String>>>,
     /// Why the device was lost, once it has been.
     lost: Arc<Mutex<Option<String>>>,
+    /// Render pipelines of fingerprinted draws, made once and reused.
+    pub(super) pipelines: super::pipeline::Pipelines,
 }
 
 impl Gpu {
@@ -62,7 +64,7 @@ impl Gpu {
         } else {
             wgpu::TextureFormat::Rgba16Float
         };
-        Ok(Gpu { adapter, device, queue, texture_format, uncaptured, lost })
+        Ok(Gpu { adapter, device, queue, texture_format, uncaptured, lost, pipelines: Default::default() })
     }
 
     /// Destroys the device, as a driver reset would lose it: what runs on this `Gpu` afterwards
@@ -70,6 +72,11 @@ impl Gpu {
     #[doc(hidden)]
     pub fn lose_device_for_tests(&self) {
         self.device.destroy();
+    }
+
+    /// How many render pipelines this device keeps for reuse (see `Draw::fingerprint`).
+    pub fn kept_pipelines(&self) -> usize {
+        self.pipelines.len()
     }
 
     /// The device's limits, which renders and dispatches are checked against.

@@ -122,6 +122,7 @@ mod tests {
     fn draw<'a>(module: &'a naga::Module, uniforms: &'a [u8], blend: Blend) -> Draw<'a> {
         Draw {
             module,
+            fingerprint: None,
             vertex_entry: "vs",
             fragment_entry: "fs",
             uniforms,

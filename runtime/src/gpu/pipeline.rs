@@ -1,9 +1,13 @@
-//! A draw's render pipeline, bind groups and buffers, built from what the draw holds.
+//! A draw's render pipeline, bind groups and buffers, built from what the draw holds, and the
+//! pipelines kept per device (`Pipelines`) so that drawing the same shader again makes none.
 
 use super::render::{Blend, DEPTH_FORMAT, Draw};
 use super::texture::{self, Uploaded};
 use super::{Gpu, GpuError};
 use std::borrow::Cow;
+use std::collections::HashMap;
+use std::hash::{DefaultHasher, Hash, Hasher};
+use std::sync::Mutex;
 
 /// A draw's GPU objects, made before the render pass borrows them.
 pub(super) struct Prepared {
@@ -12,56 +16,87 @@ pub(super) struct Prepared {
     pub vertex_buffers: Vec<wgpu::Buffer>,
     pub index_buffer: wgpu::Buffer,
     pub index_count: u32,
+    /// The pipeline to keep under its key once the device has accepted it (a pipeline made
+    /// inside a failed error scope is invalid and must not be reused).
+    pub made: Option<(u64, Kept)>,
+}
+
+/// A kept pipeline and the bind group layouts it was made with (its bind groups, made per draw,
+/// must use these very layouts).
+#[derive(Clone)]
+pub(super) struct Kept {
+    pipeline: wgpu::RenderPipeline,
+    uniforms: Option<wgpu::BindGroupLayout>,
+    textures: Option<wgpu::BindGroupLayout>,
+}
+
+/// The pipelines a device has made for fingerprinted draws, by `pipeline_key`.
+#[derive(Default)]
+pub(super) struct Pipelines(Mutex<HashMap<u64, Kept>>);
+
+/// More than this many kept pipelines and the next one starts the store afresh: a long session
+/// of edited shaders must not keep every version alive.
+const MAX_KEPT: usize = 256;
+
+impl Pipelines {
+    fn get(&self, key: u64) -> Option<Kept> {
+        self.0.lock().ok()?.get(&key).cloned()
+    }
+
+    /// Keeps `kept` under `key`.
+    pub(super) fn keep(&self, key: u64, kept: Kept) {
+        if let Ok(mut map) = self.0.lock() {
+            if map.len() >= MAX_KEPT {
+                map.clear();
+            }
+            map.insert(key, kept);
+        }
+    }
+
+    /// How many pipelines are kept.
+    pub(super) fn len(&self) -> usize {
+        self.0.lock().map_or(0, |m| m.len())
+    }
+}
+
+/// Everything a draw's pipeline and layouts depend on, hashed; `None` when the draw has no
+/// fingerprint.
+fn pipeline_key(draw: &Draw, format: wgpu::TextureFormat) -> Option<u64> {
+    let mut h = DefaultHasher::new();
+    draw.fingerprint?.hash(&mut h);
+    (draw.vertex_entry, draw.fragment_entry, format, matches!(draw.blend, Blend::Replace)).hash(&mut h);
+    draw.attributes.iter().for_each(|a| (a.location, a.components).hash(&mut h));
+    draw.uniforms.is_empty().hash(&mut h);
+    draw.textures.iter().for_each(|t| texture::view_dimension(t.dimension).hash(&mut h));
+    Some(h.finish())
 }
 
 impl Gpu {
-    /// Pipeline, bind groups and buffers for one draw.
+    /// Pipeline, bind groups and buffers for one draw; the pipeline is a kept one when the draw
+    /// has a fingerprint that was drawn before.
     pub(super) fn prepare(&self, draw: &Draw, format: wgpu::TextureFormat) -> Result<Prepared, GpuError> {
-        let both = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
-        let mut layouts = [None, None];
+        let key = pipeline_key(draw, format);
+        let (kept, made) = match key.and_then(|k| self.pipelines.get(k)) {
+            Some(kept) => (kept, None),
+            None => {
+                let kept = self.make_pipeline(draw, format);
+                let made = key.map(|k| (k, kept.clone()));
+                (kept, made)
+            }
+        };
         let mut groups = Vec::new();
-        if !draw.uniforms.is_empty() {
+        if let Some(layout) = &kept.uniforms {
             let buffer = self.buffer_with(draw.uniforms, 16, wgpu::BufferUsages::UNIFORM);
-            let layout = self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("patina uniforms"),
-                entries: &[wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: both,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                }],
-            });
             let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("patina uniforms"),
-                layout: &layout,
+                layout,
                 entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
             });
             groups.push((0, group));
-            layouts[0] = Some(layout);
         }
-        if !draw.textures.is_empty() {
+        if let Some(layout) = &kept.textures {
             let uploaded =
                 draw.textures.iter().map(|t| self.upload_texture(t)).collect::<Result<Vec<_>, _>>()?;
-            let mut entries = Vec::new();
-            for (k, t) in draw.textures.iter().enumerate() {
-                let texture = wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: texture::view_dimension(t.dimension),
-                    multisampled: false,
-                };
-                let sampler = wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering);
-                for (binding, ty) in [(2 * k as u32, texture), (2 * k as u32 + 1, sampler)] {
-                    entries.push(wgpu::BindGroupLayoutEntry { binding, visibility: both, ty, count: None });
-                }
-            }
-            let layout = self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("patina textures"),
-                entries: &entries,
-            });
             let entries: Vec<_> = uploaded
                 .iter()
                 .enumerate()
@@ -80,17 +115,68 @@ impl Gpu {
                 .collect();
             let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("patina textures"),
-                layout: &layout,
+                layout,
                 entries: &entries,
             });
             groups.push((1, group));
-            layouts[1] = Some(layout);
         }
-        let used = if layouts[1].is_some() { 2 } else { usize::from(layouts[0].is_some()) };
-        let layout_refs: Vec<_> = layouts[..used].iter().map(Option::as_ref).collect();
+        let vertex_buffers = draw
+            .attributes
+            .iter()
+            .map(|a| self.buffer_with(bytemuck::cast_slice(&a.data), 4, wgpu::BufferUsages::VERTEX))
+            .collect();
+        let index_buffer = self.buffer_with(bytemuck::cast_slice(draw.indices), 4, wgpu::BufferUsages::INDEX);
+        Ok(Prepared {
+            pipeline: kept.pipeline,
+            groups,
+            vertex_buffers,
+            index_buffer,
+            index_count: draw.indices.len() as u32,
+            made,
+        })
+    }
+
+    /// The bind group layouts and the render pipeline of a draw.
+    fn make_pipeline(&self, draw: &Draw, format: wgpu::TextureFormat) -> Kept {
+        let both = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+        let uniforms = (!draw.uniforms.is_empty()).then(|| {
+            self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("patina uniforms"),
+                entries: &[wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: both,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                }],
+            })
+        });
+        let textures = (!draw.textures.is_empty()).then(|| {
+            let mut entries = Vec::new();
+            for (k, t) in draw.textures.iter().enumerate() {
+                let texture = wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: texture::view_dimension(t.dimension),
+                    multisampled: false,
+                };
+                let sampler = wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering);
+                for (binding, ty) in [(2 * k as u32, texture), (2 * k as u32 + 1, sampler)] {
+                    entries.push(wgpu::BindGroupLayoutEntry { binding, visibility: both, ty, count: None });
+                }
+            }
+            self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("patina textures"),
+                entries: &entries,
+            })
+        });
+        let layouts = [uniforms.as_ref(), textures.as_ref()];
+        let used = if textures.is_some() { 2 } else { usize::from(uniforms.is_some()) };
         let layout = self.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: None,
-            bind_group_layouts: &layout_refs,
+            bind_group_layouts: &layouts[..used],
             immediate_size: 0,
         });
         let module = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -163,18 +249,6 @@ impl Gpu {
             multiview_mask: None,
             cache: None,
         });
-        let vertex_buffers = draw
-            .attributes
-            .iter()
-            .map(|a| self.buffer_with(bytemuck::cast_slice(&a.data), 4, wgpu::BufferUsages::VERTEX))
-            .collect();
-        let index_buffer = self.buffer_with(bytemuck::cast_slice(draw.indices), 4, wgpu::BufferUsages::INDEX);
-        Ok(Prepared {
-            pipeline,
-            groups,
-            vertex_buffers,
-            index_buffer,
-            index_count: draw.indices.len() as u32,
-        })
+        Kept { pipeline, uniforms, textures }
     }
 }

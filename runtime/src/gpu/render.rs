@@ -61,6 +61,11 @@ pub enum Blend {
 pub struct Draw<'a> {
     /// A module with (at least) the vertex and fragment entry points named below.
     pub module: &'a naga::Module,
+    /// The module's fingerprint (`GpuProgram::fingerprint`), when the draw's pipeline may be kept:
+    /// the pipeline is then made once per device for each fingerprint, entry points, attribute
+    /// layout, texture shapes, blend and target format, and later draws reuse it (pipeline
+    /// creation is most of a small render's time). `None`: made afresh for this draw.
+    pub fingerprint: Option<u64>,
     /// Name of the vertex entry point.
     pub vertex_entry: &'a str,
     /// Name of the fragment entry point; it writes `@location(0) vec4f`.
@@ -108,6 +113,12 @@ impl Gpu {
                 Ok(Err(e)) | Err(e) => Err(in_draw(i, e)),
             })
             .collect::<Result<Vec<_>, _>>()?;
+        // Accepted by the device (the scopes above are clean): these pipelines may be reused.
+        for p in &prepared {
+            if let Some((key, kept)) = &p.made {
+                self.pipelines.keep(*key, kept.clone());
+            }
+        }
         let readback = self.scoped(|| self.encode_render(target, &prepared, format, padded_row))??;
         let bytes = self.read_buffer(&readback)?;
         let mut pixels = Vec::with_capacity(target.width as usize * target.height as usize);

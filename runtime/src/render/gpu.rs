@@ -48,6 +48,7 @@ pub fn render(gpu: &Gpu, prepared: &Prepared, width: u32, height: u32) -> Result
         .zip(&owned)
         .map(|(object, (uniforms, attributes, textures))| Draw {
             module: &object.surface.gpu.module,
+            fingerprint: Some(object.surface.gpu.fingerprint),
             vertex_entry: &object.surface.gpu.interface.vertex_entry,
             fragment_entry: &object.surface.gpu.interface.fragment_entry,
             uniforms,

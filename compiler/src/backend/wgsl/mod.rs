@@ -60,6 +60,28 @@ pub struct GpuProgram {
     pub info: naga::valid::ModuleInfo,
     /// What the runtime binds and fills.
     pub interface: Interface,
+    /// [`module_fingerprint`] of `module`, taken when it was compiled: the key under which the
+    /// runtime keeps the module's render pipeline. Recompute it after editing `module`.
+    pub fingerprint: u64,
+}
+
+/// A 64-bit hash of everything in `module` (its debug form, which names every type, constant,
+/// expression and statement in arena order): equal modules hash equal, and different ones
+/// collide with probability about 2^-64, so a pipeline cache can key on it.
+pub fn module_fingerprint(module: &naga::Module) -> u64 {
+    use std::fmt::Write as _;
+    use std::hash::Hasher as _;
+    /// Feeds formatted text straight into the hasher, so no string of the module is built.
+    struct Feed(std::collections::hash_map::DefaultHasher);
+    impl std::fmt::Write for Feed {
+        fn write_str(&mut self, s: &str) -> std::fmt::Result {
+            self.0.write(s.as_bytes());
+            Ok(())
+        }
+    }
+    let mut feed = Feed(std::collections::hash_map::DefaultHasher::new());
+    let _ = write!(feed, "{module:?}");
+    feed.0.finish()
 }
 
 impl GpuProgram {
@@ -187,7 +209,8 @@ pub fn compile_object(
         textures,
         output: output.into(),
     };
-    Ok(GpuProgram { module, info, interface })
+    let fingerprint = module_fingerprint(&module);
+    Ok(GpuProgram { module, info, interface, fingerprint })
 }
 
 /// An error's message with its causes.

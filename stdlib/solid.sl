@@ -210,13 +210,38 @@ vector hart_noise_gradient(point p)
 // the term's features span more than 5 filter widths, 0 once they span fewer than 1.7.
 float hart_term_weight(float k, fw)
 {
-    return 1 - smoothstep(0.2, 0.6, k * fw);
+    return 1 - smoothstep(0.4, 1.6, k * fw);
 }
 
 // The guarded phase.
 vector hart_clamp_phase(vector phase)
 {
     return vector(clamp(phase[0], -1e9, 1e9), clamp(phase[1], -1e9, 1e9), clamp(phase[2], -1e9, 1e9));
+}
+
+// d L: the linear part of T applied to a vector d (row-vector convention, as hart_affine).
+vector hart_linear(vector d; matrix T)
+{
+    float y[3] = {0, 0, 0};
+    constant float j, k;
+    for (k = 0; k < 3; k += 1) {
+        for (j = 0; j < 3; j += 1) {
+            y[k] += d[j] * hart_entry(T, j, k, 1e9);
+        }
+    }
+    return vector(y[0], y[1], y[2]);
+}
+
+// The filter width a noise term of frequency 1 sees, its argument's footprint: the isotropic
+// blur fw stretched by T (stretch(T) fw) and the parallelogram dpdx, dpdy carried through T's
+// linear part L, sqrt((stretch(T) fw)^2 + (|dpdx L|^2 + |dpdy L|^2) / 2). The derivatives are
+// clamped to +-1e9 and the isotropic part to 1e30; past 1e18 it is returned as it is, so nothing
+// overflows.
+float hart_term_footprint(matrix T; float fw; vector dpdx, dpdy)
+{
+    float iso = min(hart_stretch(T) * min(abs(fw), 1e30), 1e30);
+    vector x = hart_linear(hart_clamp_phase(dpdx), T), y = hart_linear(hart_clamp_phase(dpdy), T);
+    return iso > 1e18 ? iso : min(sqrt(iso * iso + 0.5 * (x . x + y . y)), 1e30);
 }
 
 // APST's classification f(s) = q(s) + sum_{i < nterms} a_i n(T_i(s)) (1), filtered:
@@ -229,18 +254,27 @@ vector hart_clamp_phase(vector phase)
 float hart_solid(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
                  vector phase; float filterwidth)
 {
+    return hart_solid_footprint(p, Q, nterms, amp, gain, T, lacunarity, phase, filterwidth, vector(0), vector(0));
+}
+
+// hart_solid over a footprint: an isotropic blur fw and the parallelogram spanned by dpdx and
+// dpdy (p's change across one pixel along each raster axis); term i fades with
+// hart_term_weight(lacunarity^i, hart_term_footprint(T, fw, dpdx, dpdy)), so a term stretched by
+// T fades by its own frequency along the footprint. With dpdx = dpdy = 0 it is hart_solid.
+float hart_solid_footprint(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
+                           vector phase; float fw; vector dpdx, dpdy)
+{
     point s = hart_clamp_point(p);
     float nt = clamp(nterms, 0, HART_MAX_TERMS);
     float lac = clamp(lacunarity, 1, 8);
-    float fw = min(abs(filterwidth), 1e30);
+    float tf = hart_term_footprint(T, fw, dpdx, dpdy);
     vector ph = hart_clamp_phase(phase);
-    float sigma = hart_stretch(T);
     point ts = hart_affine(s, T);
     float f = hart_quadric(s, Q);
     float a = clamp(amp, -1e6, 1e6), g = clamp(gain, -8, 8), k = 1;
     float i;
     for (i = 0; i < nt; i += 1) {
-        float w = hart_term_weight(k * sigma, fw);
+        float w = hart_term_weight(k, tf);
         f += clamp(nt - i, 0, 1) * a * (0.5 + w * (0.5 * snoise3(k * ts + ph)));
         a *= g;
         k *= lac;
@@ -257,18 +291,25 @@ float hart_solid(point p; matrix Q; float nterms, amp, gain; matrix T; float lac
 vector hart_solid_gradient(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
                            vector phase; float filterwidth)
 {
+    return hart_solid_gradient_footprint(p, Q, nterms, amp, gain, T, lacunarity, phase, filterwidth,
+                                         vector(0), vector(0));
+}
+
+// The gradient of hart_solid_footprint (as hart_solid_gradient, with its fade).
+vector hart_solid_gradient_footprint(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
+                                     vector phase; float fw; vector dpdx, dpdy)
+{
     point s = hart_clamp_point(p);
     float nt = clamp(nterms, 0, HART_MAX_TERMS);
     float lac = clamp(lacunarity, 1, 8);
-    float fw = min(abs(filterwidth), 1e30);
+    float tf = hart_term_footprint(T, fw, dpdx, dpdy);
     vector ph = hart_clamp_phase(phase);
-    float sigma = hart_stretch(T);
     point ts = hart_affine(s, T);
     vector grad = hart_quadric_gradient(s, Q);
     float a = clamp(amp, -1e6, 1e6), g = clamp(gain, -8, 8), k = 1;
     float i;
     for (i = 0; i < nt; i += 1) {
-        float w = hart_term_weight(k * sigma, fw);
+        float w = hart_term_weight(k, tf);
         vector dn = (0.5 * PATINA_SNOISE_SCALE) * hart_noise_gradient(k * ts + ph);
         // The chain rule through s T: (L dn)_j = sum_k T_jk dn_k.
         vector ldn = vector(
@@ -366,13 +407,14 @@ color hart_colormap(float f, width; float mode; color clut[]; float n)
     if (mode == HART_MOD) {
         color period = hart_ramp_integral(m, clut, m);
         float pa = floor(a / m), pb = floor(b / m);
-        color cb = pb * period + hart_ramp_integral(b - m * pb, clut, m);
-        color ca = pa * period + hart_ramp_integral(a - m * pa, clut, m);
-        return (cb - ca) / (b - a);
+        color rest = hart_ramp_integral(b - m * pb, clut, m) - hart_ramp_integral(a - m * pa, clut, m);
+        // Whole periods and the rest, each divided by the width before they meet, so that many
+        // periods of a bright table do not overflow (the sweep found (pb - pa) period = inf).
+        return ((pb - pa) / (b - a)) * period + rest / (b - a);
     }
     float lo = max(a, 0), hi = min(b, m);
     color inside = hart_ramp_integral(hi, clut, m) - hart_ramp_integral(lo, clut, m);
-    return ((lo - a) * clut[0] + inside + (b - hi) * clut[int(m)]) / (b - a);
+    return ((lo - a) / (b - a)) * clut[0] + inside / (b - a) + ((b - hi) / (b - a)) * clut[int(m)];
 }
 
 // The unfiltered colour map: hart_colormap at width 0.
@@ -382,65 +424,105 @@ color hart_colormap(float f; float mode; color clut[]; float n)
     return hart_colormap(f, 0, mode, clut, n);
 }
 
-// The presets: APST's four fundamental textures (§2.2, L128-166) with the seed's parameters.
-// `fw` is the filter width of p in texture space (0: unfiltered). Each is
-// hart_colormap(f, hart_filterwidth(grad f, fw), mode, table) with f = hart_solid(...) and
-// grad f = hart_solid_gradient(...). The colours are this library's choice where the seed names
-// them only in words.
+// The colour-index filter width over a footprint made of an isotropic blur of width fw in p
+// and the parallelogram spanned by dpdx and dpdy (p's change across one pixel along each raster
+// axis): sqrt((fw |grad|)^2 + (grad . dpdx)^2 + (grad . dpdy)^2). The last two are APST's
+// ||grad_xy f|| (9), the screen-space gradient J^T grad; the first is hart_filterwidth. Each
+// part is at most 1e30, and the sum is not squared once a part passes 1e18, so nothing overflows.
+float hart_footprint_width(vector grad; float fw; vector dpdx, dpdy)
+{
+    vector g = vector(clamp(grad[0], -1e18, 1e18), clamp(grad[1], -1e18, 1e18), clamp(grad[2], -1e18, 1e18));
+    float iso = hart_filterwidth(g, fw);
+    float x = min(abs(g . hart_clamp_phase(dpdx)), 1e30), y = min(abs(g . hart_clamp_phase(dpdy)), 1e30);
+    float m = max(iso, max(x, y));
+    return m > 1e18 ? m : sqrt(iso * iso + x * x + y * y);
+}
+
+// A solid texture's filtered colour: hart_colormap(f, width, mode, clut, n) with f and its
+// gradient from hart_solid_footprint and hart_solid_gradient_footprint over the footprint, and the
+// width hart_footprint_width(grad f, fw, dpdx, dpdy). fw = 0 with dpdx, dpdy the pixel's
+// derivatives of p is APST's filter; dpdx = dpdy = 0 the isotropic filter of width fw; all zero,
+// unfiltered.
+// sweep: clut length 4; n in [0, 4]
+color hart_texture(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
+                   vector phase; float fw; vector dpdx, dpdy; float mode; color clut[]; float n)
+{
+    float f = hart_solid_footprint(p, Q, nterms, amp, gain, T, lacunarity, phase, fw, dpdx, dpdy);
+    vector g = hart_solid_gradient_footprint(p, Q, nterms, amp, gain, T, lacunarity, phase, fw, dpdx, dpdy);
+    return hart_colormap(f, hart_footprint_width(g, fw, dpdx, dpdy), mode, clut, n);
+}
+
+// The presets: APST's four fundamental textures (§2.2, L128-166) with the seed's parameters, each
+// as hart_texture over a footprint (`hart_X_footprint(p, fw, dpdx, dpdy)`: an isotropic blur fw and
+// p's pixel derivatives dpdx, dpdy, as hart_texture) and over an isotropic filter width alone
+// (`hart_X(p, fw)`, fw the filter width of p in texture space, 0: unfiltered). The colours are
+// this library's choice where the seed names them only in words.
 
 // Wood (5), L132-139: f = s^2 + t^2 + n(4s, 4t, r): concentric cylinders about the r axis (Q with
 // A = E = 1), one noise term of amplitude 1 with T = diag(4, 4, 1); a modulo-one linear map from
 // a light earlywood to a darker latewood (rings of f = k, radius sqrt(k): the early rings wider).
-color hart_wood(point p; float fw)
+color hart_wood_footprint(point p; float fw; vector dpdx, dpdy)
 {
     matrix Q = (1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0);
     matrix T = (4, 0, 0, 0,  0, 4, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1);
     constant color clut[2] = {color(0.86, 0.66, 0.42), color(0.50, 0.30, 0.14)};
-    float f = hart_solid(p, Q, 1, 1, 1, T, 1, vector(0), fw);
-    vector g = hart_solid_gradient(p, Q, 1, 1, 1, T, 1, vector(0), fw);
-    return hart_colormap(f, hart_filterwidth(g, fw), HART_MOD, clut, 2);
+    return hart_texture(p, Q, 1, 1, 1, T, 1, vector(0), fw, dpdx, dpdy, HART_MOD, clut, 2);
+}
+
+color hart_wood(point p; float fw)
+{
+    return hart_wood_footprint(p, fw, vector(0), vector(0));
 }
 
 // Marble (7), L150-157: f = r + sum_{i=1}^{4} 2^-i n(2^i s) (Q with I = 1/2; T = 2 I,
 // lacunarity 2, amp and gain 1/2, 4 terms); a modulo-one table from a marble cross-section
 // (white, grey, a dark vein, grey, white: the same colour at both ends, so the repeat is seamless).
-color hart_marble(point p; float fw)
+color hart_marble_footprint(point p; float fw; vector dpdx, dpdy)
 {
     matrix Q = (0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0.5,  0, 0, 0.5, 0);
     matrix T = (2, 0, 0, 0,  0, 2, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
     constant color clut[6] = {
         color(0.93, 0.92, 0.89), color(0.85, 0.84, 0.82), color(0.62, 0.62, 0.66),
         color(0.30, 0.30, 0.36), color(0.70, 0.70, 0.72), color(0.93, 0.92, 0.89)};
-    float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
-    vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
-    return hart_colormap(f, hart_filterwidth(g, fw), HART_MOD, clut, 6);
+    return hart_texture(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw, dpdx, dpdy, HART_MOD, clut, 6);
+}
+
+color hart_marble(point p; float fw)
+{
+    return hart_marble_footprint(p, fw, vector(0), vector(0));
 }
 
 // Clouds (6), L141-148: f = sum_{i=1}^{4} 2^-i n(2^i s) (Q = 0; T = 2 I, lacunarity 2, amp and
 // gain 1/2, 4 terms); a clamped linear map from blue to white.
-color hart_clouds(point p; float fw)
+color hart_clouds_footprint(point p; float fw; vector dpdx, dpdy)
 {
     matrix Q = 0;
     matrix T = (2, 0, 0, 0,  0, 2, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
     constant color clut[2] = {color(0.25, 0.45, 0.85), color(1, 1, 1)};
-    float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
-    vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw);
-    return hart_colormap(f, hart_filterwidth(g, fw), HART_CLAMP, clut, 2);
+    return hart_texture(p, Q, 4, 0.5, 0.5, T, 2, vector(0), fw, dpdx, dpdy, HART_CLAMP, clut, 2);
+}
+
+color hart_clouds(point p; float fw)
+{
+    return hart_clouds_footprint(p, fw, vector(0), vector(0));
 }
 
 // Fire (8), L159-166: f = r + sum_{i=1}^{4} 2^-i n(2^i s, 0, 2^i r + phase) (Q with I = 1/2;
 // T = diag(2, 0, 2), lacunarity 2, amp and gain 1/2, 4 terms, phase (0, 0, phase): animating the
 // phase animates the flames). The seed states no colour map: a clamped black, red, orange,
 // yellow, white ramp.
-color hart_fire(point p; float phase, fw)
+color hart_fire_footprint(point p; float phase, fw; vector dpdx, dpdy)
 {
     matrix Q = (0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0.5,  0, 0, 0.5, 0);
     matrix T = (2, 0, 0, 0,  0, 0, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1);
     constant color clut[5] = {
         color(0, 0, 0), color(0.75, 0.1, 0), color(1, 0.5, 0), color(1, 0.9, 0.3), color(1, 1, 1)};
-    float f = hart_solid(p, Q, 4, 0.5, 0.5, T, 2, vector(0, 0, phase), fw);
-    vector g = hart_solid_gradient(p, Q, 4, 0.5, 0.5, T, 2, vector(0, 0, phase), fw);
-    return hart_colormap(f, hart_filterwidth(g, fw), HART_CLAMP, clut, 5);
+    return hart_texture(p, Q, 4, 0.5, 0.5, T, 2, vector(0, 0, phase), fw, dpdx, dpdy, HART_CLAMP, clut, 5);
+}
+
+color hart_fire(point p; float phase, fw)
+{
+    return hart_fire_footprint(p, phase, fw, vector(0), vector(0));
 }
 
 #endif

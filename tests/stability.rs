@@ -138,7 +138,9 @@ fn the_guards_the_sweep_found_missing_hold() {
     // overflowed f32, filteredpulsetrain at period 0 (and 1e30 / 1e-30) was NaN,
     // filteredcolortable with colours of 1e30 and a width of 1e30 periods overflowed, and
     // hart_ramp_ext's modulo by m = 0 was NaN. The last two were found by the default random
-    // combinations (seeded, so the same ones every run).
+    // combinations (seeded, so the same ones every run), as were hart_term_footprint's stretch
+    // times width (T and fw of 1e30) and hart_texture's colour map over many periods of colours of
+    // 1e30, both overflowing f32.
     let out = patina(&[
         "--stdlib",
         "--module",
@@ -155,10 +157,14 @@ fn the_guards_the_sweep_found_missing_hold() {
         "filteredcolortable",
         "--function",
         "hart_ramp_ext",
+        "--function",
+        "hart_term_footprint",
+        "--function",
+        "hart_texture",
         "--backend",
         "cpu",
     ]);
     let (stdout, stderr) = text(&out);
     assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
-    assert!(stderr.contains("5 subjects") && stderr.contains("0 unstable, 0 not swept"), "{stderr}");
+    assert!(stderr.contains("7 subjects") && stderr.contains("0 unstable, 0 not swept"), "{stderr}");
 }

@@ -4,9 +4,11 @@
 // the solid coordinates p = scale (object-space P - origin), diffusely shaded.
 //
 // `aa` 0 samples the texture at the pixel's centre (point sampling); `aa` 1 is APST's analytic
-// filter: the preset's colour map box-filtered over the spread |grad f| fw of colour indices,
-// fw being the pixel's footprint in solid space (hart_footprint) (the noise terms finer than fw also fade to their
-// mean). The supersampled reference is the same scene with aa 0 and output.supersample.
+// filter: the preset's colour map box-filtered over the spread of colour indices across the
+// pixel, ||grad_xy f|| = sqrt((grad f . dp/dx)^2 + (grad f . dp/dy)^2), dp/dx and dp/dy being the
+// pixel's footprint in solid space (hart_pixel_dp); the noise terms finer than the footprint
+// also fade to their mean. The supersampled reference is the same scene with aa 0 and
+// output.supersample.
 //
 // (The presets cannot be called under a uniform condition or loop, so there is one shader per
 // texture rather than a `material` switch, and no supersampling loop in the shader: their
@@ -19,12 +21,10 @@ point hart_solid_point(float scale; float origin[3])
     return scale * (transform("object", P) - point (origin[0], origin[1], origin[2]));
 }
 
-// The pixel's footprint in solid space, sqrt((|dp/dx|^2 + |dp/dy|^2) / 2), with dp/dx and dp/dy
-// along the raster axes from Du and Dv of p and of the window position (the inverse of its
-// Jacobian over (u, v)); 0 when `aa` is 0. Times |grad f| it is APST's width ||grad_xy f|| (9)
-// for a gradient in the tangent plane and a square footprint, and the width of the box whose
-// variance is that of f over the pixel.
-float hart_footprint(point p; float aa)
+// The change of p across one pixel along the raster axis `axis` (0: x, 1: y), from Du and Dv of p
+// and of the window position (the inverse of its Jacobian over (u, v)); 0 when `aa` is 0. With
+// both axes it is the pixel's footprint in solid space, over which the presets filter (APST (9)).
+vector hart_pixel_dp(point p; float axis, aa)
 {
     point w = point (xyz_screen()[0], xyz_screen()[1], 0);
     vector wu = Du(w), wv = Dv(w);
@@ -32,7 +32,7 @@ float hart_footprint(point p; float aa)
     vector pu = Du(p), pv = Dv(p);
     vector dpdx = det != 0 ? (wv[1] * pu - wu[1] * pv) / det : vector (0);
     vector dpdy = det != 0 ? (wu[0] * pv - wv[0] * pu) / det : vector (0);
-    return aa > 0.5 ? sqrt(0.5 * (dpdx . dpdx + dpdy . dpdy)) : 0;
+    return aa > 0.5 ? (axis < 0.5 ? dpdx : dpdy) : vector (0);
 }
 
 // Matte shading of the texture colour.
@@ -46,7 +46,7 @@ surface
 solid_wood(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float Ka = 0.35, Kd = 0.75)
 {
     point p = hart_solid_point(scale, origin);
-    Ci = hart_shade(hart_wood(p, hart_footprint(p, aa)), Ka, Kd);
+    Ci = hart_shade(hart_wood_footprint(p, 0, hart_pixel_dp(p, 0, aa), hart_pixel_dp(p, 1, aa)), Ka, Kd);
     Oi = 1;
 }
 
@@ -54,7 +54,7 @@ surface
 solid_marble(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float Ka = 0.35, Kd = 0.75)
 {
     point p = hart_solid_point(scale, origin);
-    Ci = hart_shade(hart_marble(p, hart_footprint(p, aa)), Ka, Kd);
+    Ci = hart_shade(hart_marble_footprint(p, 0, hart_pixel_dp(p, 0, aa), hart_pixel_dp(p, 1, aa)), Ka, Kd);
     Oi = 1;
 }
 
@@ -62,7 +62,7 @@ surface
 solid_clouds(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float Ka = 0.35, Kd = 0.75)
 {
     point p = hart_solid_point(scale, origin);
-    Ci = hart_shade(hart_clouds(p, hart_footprint(p, aa)), Ka, Kd);
+    Ci = hart_shade(hart_clouds_footprint(p, 0, hart_pixel_dp(p, 0, aa), hart_pixel_dp(p, 1, aa)), Ka, Kd);
     Oi = 1;
 }
 
@@ -71,6 +71,6 @@ solid_fire(float aa = 1; float scale = 1; float origin[3] = {0, 0, 0}; float pha
            float Ka = 0.35, Kd = 0.75)
 {
     point p = hart_solid_point(scale, origin);
-    Ci = hart_shade(hart_fire(p, phase, hart_footprint(p, aa)), Ka, Kd);
+    Ci = hart_shade(hart_fire_footprint(p, phase, 0, hart_pixel_dp(p, 0, aa), hart_pixel_dp(p, 1, aa)), Ka, Kd);
     Oi = 1;
 }

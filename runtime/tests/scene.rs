@@ -464,3 +464,33 @@ fn a_shader_can_be_a_standard_library_module() {
     );
     assert!(message.contains("shaders.sl") && !message.contains('\n'), "{message}");
 }
+
+#[test]
+fn the_bench_and_reference_scenes_load_and_their_knobs_resolve() {
+    // examples/scenes/bench/ (the receding planes of docs/error-vs-time.md) and
+    // examples/scenes/reference/ (the exact references) are not gallery scenes; they must still
+    // load, and each bench knob's settings and reference must apply to the scene.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes");
+    for dir in ["bench", "reference"] {
+        let mut count = 0;
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            count += 1;
+            if dir == "bench" {
+                assert!(!scene.knobs.is_empty(), "{} declares no knob", path.display());
+                for knob in &scene.knobs {
+                    for setting in &knob.settings {
+                        let _ = scene.with_setting(setting);
+                    }
+                    // The planes' reference is 16 x 16 supersampling of the point-sampled texture.
+                    let Reference::Setting(s) = &knob.reference else {
+                        panic!("{}: a setting", path.display())
+                    };
+                    assert_eq!(scene.with_setting(s).output.supersample, 16, "{}", path.display());
+                }
+            }
+        }
+        assert!(count >= 2, "{dir}: {count} scenes");
+    }
+}

@@ -186,7 +186,7 @@ mod hart {
     }
 
     fn term_weight(k: f64, fw: f64) -> f64 {
-        1.0 - smoothstep(0.2, 0.6, k * fw)
+        1.0 - smoothstep(0.4, 1.6, k * fw)
     }
 
     /// The terms' arguments T_i(s), amplitudes a_i, frequencies and fade weights.
@@ -802,7 +802,7 @@ fn filtering_drops_terms_and_tends_to_the_mean() {
         let sigma = (0..3).map(|c| (0..3).map(|j| a.prm.t[4 * j + c].abs()).sum::<f64>()).fold(0.0, f64::max);
         let mut last = usize::MAX;
         for (i, w) in widths.iter().enumerate() {
-            let live = (0..6).filter(|&t| a.prm.lac.powi(t) * sigma * w < 0.6).count();
+            let live = (0..6).filter(|&t| a.prm.lac.powi(t) * sigma * w < 1.6).count();
             assert!(live <= last);
             last = live;
             variance[i] += (chunk[i].f - mean).powi(2) / base.len() as f64;
@@ -1007,4 +1007,79 @@ fn gpu_matches_the_interpreter() {
     }
     println!("{} argument sets: {identical} of {total} values identical", args.len());
     println!("largest scaled GPU - interpreter difference per output {OUTPUTS:?}:\n  {worst:?}");
+}
+
+/// The footprint filter: `hart_footprint_width` is APST's ||grad_xy f|| (9) joined with the
+/// isotropic width, `hart_term_footprint` carries the footprint through T's linear part, and a
+/// preset over a footprint is the colour map of f, its terms faded by that footprint, at that
+/// width; within 1e-12 (widths) and 1e-9 (colours) of the port in f64, at random gradients,
+/// footprints (isotropic, anisotropic, both) and points, for marble (T = 2 I) and wood
+/// (T = diag(4, 4, 1), where the footprint along r counts a quarter).
+#[test]
+fn footprint_filter_is_apst_9_and_matches_the_port() {
+    let program = support::program(
+        "#include <solid.sl>\n\
+         surface t(varying vector grad = 0, dx = 0, dy = 0; varying float fw = 0;\n\
+                   output varying float width = 0, tf = 0; output varying color marble = 0, wood = 0) {\n\
+             width = hart_footprint_width(grad, fw, dx, dy);\n\
+             tf = hart_term_footprint((4, 0, 0, 0,  0, 4, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1), fw, dx, dy);\n\
+             marble = hart_marble_footprint(P, fw, dx, dy);\n\
+             wood = hart_wood_footprint(P, fw, dx, dy);\n\
+             Ci = 0; Oi = 1;\n\
+         }",
+    );
+    let mut rng = support::Rng(0x50f7);
+    let n = 300;
+    let mut cols: Vec<Vec<f64>> = vec![Vec::new(); 5];
+    for i in 0..n {
+        let v = |rng: &mut support::Rng, s: f64| [0; 3].map(|_| rng.range(-s, s));
+        cols[0].extend(v(&mut rng, 4.0));
+        cols[1].extend(v(&mut rng, 3.0));
+        // a third of the footprints isotropic only, a third anisotropic only, a third both
+        let (dx, dy) = if i % 3 == 0 { ([0.0; 3], [0.0; 3]) } else { (v(&mut rng, 0.3), v(&mut rng, 0.3)) };
+        cols[2].extend(dx);
+        cols[3].extend(dy);
+        cols[4].push(if i % 3 == 1 { 0.0 } else { rng.range(0.0, 0.3) });
+    }
+    let names = ["P", "grad", "dx", "dy", "fw"];
+    let inputs: Vec<(&str, &[f64])> = names.iter().zip(&cols).map(|(n, c)| (*n, &c[..])).collect();
+    let out = program.cpu::<f64>(n, &inputs, &["width", "tf", "marble", "wood"]);
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    for i in 0..n {
+        let at = |c: usize| &cols[c][3 * i..3 * i + 3];
+        let (p, g, dx, dy, fw) = (at(0), at(1), at(2), at(3), cols[4][i]);
+        let width =
+            |g: &[f64]| ((fw * dot(g, g).sqrt()).powi(2) + dot(g, dx).powi(2) + dot(g, dy).powi(2)).sqrt();
+        assert!((out[0][i] - width(g)).abs() <= 1e-12 * (1.0 + width(g)), "width at {i}");
+        if dot(dx, dx) + dot(dy, dy) == 0.0 {
+            let iso = hart::filterwidth([g[0], g[1], g[2]], fw);
+            assert!((out[0][i] - iso).abs() <= 1e-12 * (1.0 + iso), "isotropic width at {i}");
+        }
+        // The term footprint through T = diag(s, s, r): sqrt((sigma fw)^2 + (|dx L|^2 + |dy L|^2) / 2).
+        let term = |s: f64, r: f64| {
+            let l = |d: &[f64]| (s * d[0]).powi(2) + (s * d[1]).powi(2) + (r * d[2]).powi(2);
+            ((s.max(r) * fw).powi(2) + 0.5 * (l(dx) + l(dy))).sqrt()
+        };
+        assert!(
+            (out[1][i] - term(4.0, 1.0)).abs() <= 1e-12 * (1.0 + term(4.0, 1.0)),
+            "term footprint at {i}"
+        );
+        let p = [p[0], p[1], p[2]];
+        for (which, sigma, column) in [(1, 2.0, 2), (0, 4.0, 3)] {
+            let tf = if which == 1 { term(2.0, 2.0) } else { term(4.0, 1.0) };
+            // The port fades term i by k sigma fw: a width of tf / sigma fades it by k tf.
+            let (prm, mode, clut) = preset(which, tf / sigma, 0.0);
+            let f = hart::solid(identity, p, &prm);
+            let grad_f = hart::solid_gradient(identity, p, &prm);
+            let expected = hart::colormap(&clut, mode, f, width(&grad_f));
+            for k in 0..3 {
+                let got = out[column][3 * i + k];
+                assert!(
+                    (got - expected[k]).abs() <= 1e-9,
+                    "preset {which} at {p:?}: {got}, port {}",
+                    expected[k]
+                );
+            }
+        }
+    }
 }

@@ -93,7 +93,7 @@ fn unknown_knobs_and_settings_are_one_line_errors() {
     let out = patina(&["bench", &scene("soft_sphere"), "--knob", "stride", "-o", dir]);
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("the scene has no knob `stride` (it has: steps)"), "{stderr}");
+    assert!(stderr.contains("the scene has no knob `stride` (it has: steps, phase)"), "{stderr}");
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
     let out = patina(&["bench", &scene("hart_torus"), "--knob", "antialias=point,3x3", "-o", dir]);
     assert_eq!(out.status.code(), Some(2));

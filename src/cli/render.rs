@@ -50,14 +50,20 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
 /// The GPU, or `None` (saying why on stderr) when there is none or `PATINA_GPU=off`: the caller
 /// falls back to the CPU reference.
 pub fn open_gpu() -> Option<Gpu> {
+    open_gpu_or("rendering on the CPU")
+}
+
+/// The GPU, or `None` after one `note:` line saying why and what happens instead (`fallback`,
+/// e.g. "rendering on the CPU") when there is none or `PATINA_GPU=off`.
+pub fn open_gpu_or(fallback: &str) -> Option<Gpu> {
     if !gpu::adapter_required() {
-        eprintln!("note: {}=off: rendering on the CPU", gpu::GPU_ENV);
+        eprintln!("note: {}=off: {fallback}", gpu::GPU_ENV);
         return None;
     }
     match Gpu::new() {
         Ok(gpu) => Some(gpu),
         Err(e) => {
-            eprintln!("note: no GPU ({e}); rendering on the CPU");
+            eprintln!("note: no GPU ({e}); {fallback}");
             None
         }
     }

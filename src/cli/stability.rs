@@ -5,10 +5,10 @@ use std::process::ExitCode;
 
 use patina_compiler::diag;
 use patina_compiler::syntax::preprocess::{FsLoader, MemoryLoader, SourceLoader, read_source_file};
-use patina_runtime::gpu::{self, Gpu};
 use patina_runtime::stability::{self, Options, Row, Subject, table};
 
 use super::progress::{steps, with_bars};
+use super::render::open_gpu_or;
 use super::{BackendChoice, StabilityArgs};
 
 pub fn run(args: StabilityArgs) -> Result<ExitCode, String> {
@@ -22,7 +22,7 @@ pub fn run(args: StabilityArgs) -> Result<ExitCode, String> {
     }
     let gpu = match args.backend {
         BackendChoice::Cpu => None,
-        BackendChoice::Gpu => open_gpu(),
+        BackendChoice::Gpu => open_gpu_or("sweeping the interpreter only"),
     };
     let options = Options { random: args.random, ..Options::default() };
     let rows: Vec<Row> = with_bars(|bars| {
@@ -127,20 +127,4 @@ fn gather(args: &StabilityArgs) -> Result<(Vec<Subject>, Box<dyn SourceLoader>),
     }
     let subjects = stability::subjects(&name, &text, &loader, false)?;
     Ok((subjects, Box::new(loader)))
-}
-
-/// The GPU, or `None` (saying why in one line) when there is none or `PATINA_GPU=off`, as for
-/// `patina render`: the sweep then runs on the interpreter only.
-fn open_gpu() -> Option<Gpu> {
-    if !gpu::adapter_required() {
-        eprintln!("note: {}=off: sweeping the interpreter only", gpu::GPU_ENV);
-        return None;
-    }
-    match Gpu::new() {
-        Ok(gpu) => Some(gpu),
-        Err(e) => {
-            eprintln!("note: no GPU ({e}); sweeping the interpreter only");
-            None
-        }
-    }
 }

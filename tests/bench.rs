@@ -2,17 +2,12 @@
 //! sweeps are in docs/error-vs-time.md; this only proves the command works.)
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use patina_runtime::image::Image;
 
-fn patina(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_patina"))
-        .args(args)
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("the patina binary runs")
-}
+mod support;
+
+use support::patina;
 
 fn scene(name: &str) -> String {
     format!("{}/examples/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"))
@@ -20,9 +15,7 @@ fn scene(name: &str) -> String {
 
 /// A fresh directory for one test's output.
 fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("patina-bench-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+    support::scratch_dir("bench", test)
 }
 
 /// The CSV's rows as maps from column to value.

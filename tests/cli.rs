@@ -2,15 +2,11 @@
 //! human and JSON diagnostic formats.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn patina(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_patina"))
-        .args(args)
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("the patina binary runs")
-}
+mod support;
+
+use support::patina;
 
 fn scratch(name: &str, contents: &[u8]) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("patina-cli-{}", std::process::id()));

@@ -2,21 +2,15 @@
 //! never a backtrace.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn patina(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_patina"))
-        .args(args)
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("the patina binary runs")
-}
+mod support;
+
+use support::patina;
 
 /// A directory of this test's own.
 fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("patina-limits-cli-{}-{test}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    support::scratch_dir("limits-cli", test)
 }
 
 fn example(name: &str) -> String {

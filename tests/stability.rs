@@ -3,22 +3,18 @@
 //! documented precondition exit 0, the table goes to Markdown and CSV, bad usage exits 2.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
+mod support;
+
+/// Runs `patina stability` with `args`.
 fn patina(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_patina"))
-        .arg("stability")
-        .args(args)
-        .env("NODEVICE_SELECT", "1")
-        .output()
-        .expect("the patina binary runs")
+    support::patina(&[&["stability"], args].concat())
 }
 
 /// A scratch directory of this test alone (tests run in parallel).
 fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("patina-stability-{}-{test}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    support::scratch_dir("stability", test)
 }
 
 fn shader_file(test: &str, source: &str) -> String {

@@ -213,10 +213,10 @@ float hart_term_weight(float k, fw)
     return 1 - smoothstep(0.4, 1.6, k * fw);
 }
 
-// The guarded phase.
-vector hart_clamp_phase(vector phase)
+// A vector with its components clamped to +-1e9: the guard of phases and footprints.
+vector hart_clamp_vector(vector v)
 {
-    return vector(clamp(phase[0], -1e9, 1e9), clamp(phase[1], -1e9, 1e9), clamp(phase[2], -1e9, 1e9));
+    return vector(clamp(v[0], -1e9, 1e9), clamp(v[1], -1e9, 1e9), clamp(v[2], -1e9, 1e9));
 }
 
 // d L: the linear part of T applied to a vector d (row-vector convention, as hart_affine).
@@ -240,7 +240,7 @@ vector hart_linear(vector d; matrix T)
 float hart_term_footprint(matrix T; float fw; vector dpdx, dpdy)
 {
     float iso = min(hart_stretch(T) * min(abs(fw), 1e30), 1e30);
-    vector x = hart_linear(hart_clamp_phase(dpdx), T), y = hart_linear(hart_clamp_phase(dpdy), T);
+    vector x = hart_linear(hart_clamp_vector(dpdx), T), y = hart_linear(hart_clamp_vector(dpdy), T);
     return iso > 1e18 ? iso : min(sqrt(iso * iso + 0.5 * (x . x + y . y)), 1e30);
 }
 
@@ -268,7 +268,7 @@ float hart_solid_footprint(point p; matrix Q; float nterms, amp, gain; matrix T;
     float nt = clamp(nterms, 0, HART_MAX_TERMS);
     float lac = clamp(lacunarity, 1, 8);
     float tf = hart_term_footprint(T, fw, dpdx, dpdy);
-    vector ph = hart_clamp_phase(phase);
+    vector ph = hart_clamp_vector(phase);
     point ts = hart_affine(s, T);
     float f = hart_quadric(s, Q);
     float a = clamp(amp, -1e6, 1e6), g = clamp(gain, -8, 8), k = 1;
@@ -303,7 +303,7 @@ vector hart_solid_gradient_footprint(point p; matrix Q; float nterms, amp, gain;
     float nt = clamp(nterms, 0, HART_MAX_TERMS);
     float lac = clamp(lacunarity, 1, 8);
     float tf = hart_term_footprint(T, fw, dpdx, dpdy);
-    vector ph = hart_clamp_phase(phase);
+    vector ph = hart_clamp_vector(phase);
     point ts = hart_affine(s, T);
     vector grad = hart_quadric_gradient(s, Q);
     float a = clamp(amp, -1e6, 1e6), g = clamp(gain, -8, 8), k = 1;
@@ -433,7 +433,7 @@ float hart_footprint_width(vector grad; float fw; vector dpdx, dpdy)
 {
     vector g = vector(clamp(grad[0], -1e18, 1e18), clamp(grad[1], -1e18, 1e18), clamp(grad[2], -1e18, 1e18));
     float iso = hart_filterwidth(g, fw);
-    float x = min(abs(g . hart_clamp_phase(dpdx)), 1e30), y = min(abs(g . hart_clamp_phase(dpdy)), 1e30);
+    float x = min(abs(g . hart_clamp_vector(dpdx)), 1e30), y = min(abs(g . hart_clamp_vector(dpdy)), 1e30);
     float m = max(iso, max(x, y));
     return m > 1e18 ? m : sqrt(iso * iso + x * x + y * y);
 }

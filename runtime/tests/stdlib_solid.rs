@@ -220,6 +220,41 @@ mod hart {
         f
     }
 
+    /// d L: T's linear part applied to the row vector d, d clamped to +-1e9.
+    fn linear(d: [f64; 3], t: &[f64; 16]) -> [f64; 3] {
+        let d = d.map(|x| x.clamp(-1e9, 1e9));
+        [0, 1, 2].map(|k| (0..3).map(|j| d[j] * entry(t, j, k, 1e9)).sum())
+    }
+
+    /// f over a footprint (prm.fw isotropic, dx and dy the parallelogram): term i is the mean of
+    /// N_i = clamp(ceil(2 k |M|), 1, 8) noise probes at k T_0(s) + phase + k ((j + 1/2) / N_i - 1/2) M,
+    /// M the longer of dx L and dy L, faded by the footprint one probe covers,
+    /// sqrt((sigma fw)^2 + (|minor|^2 + (|M| / N_i)^2) / 2).
+    pub fn solid_footprint(p: [f64; 3], prm: &Params, dx: [f64; 3], dy: [f64; 3]) -> f64 {
+        let len2 = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>();
+        let (x, y) = (linear(dx, &prm.t), linear(dy, &prm.t));
+        let (major, minor2) = if len2(x) >= len2(y) { (x, len2(y)) } else { (y, len2(x)) };
+        let lmajor = len2(major).sqrt();
+        let iso = stretch(&prm.t) * prm.fw.abs();
+        let mut f = quadric(p, &prm.q);
+        for (arg, a, k, _) in terms(|x| x, p, prm) {
+            let probes = (2.0 * k * lmajor).ceil().clamp(1.0, 8.0);
+            let piece = lmajor / probes;
+            let w = term_weight(k, (iso * iso + 0.5 * (minor2 + piece * piece)).sqrt());
+            let mut sum = 0.0;
+            for j in 0..probes as usize {
+                let t = k * ((j as f64 + 0.5) / probes - 0.5);
+                sum += super::reference::noise(
+                    arg[0] + t * major[0],
+                    arg[1] + t * major[1],
+                    arg[2] + t * major[2],
+                );
+            }
+            f += a * (0.5 + w * 0.5 * SNOISE_SCALE * sum / probes);
+        }
+        f
+    }
+
     /// A bound on the size of f's terms, for relative tolerances.
     pub fn scale(p: [f64; 3], prm: &Params) -> f64 {
         let s = clamp_point(p);
@@ -1011,8 +1046,8 @@ fn gpu_matches_the_interpreter() {
 
 /// The footprint filter: `hart_footprint_width` is APST's ||grad_xy f|| (9) joined with the
 /// isotropic width, `hart_term_footprint` carries the footprint through T's linear part, and a
-/// preset over a footprint is the colour map of f, its terms faded by that footprint, at that
-/// width; within 1e-12 (widths) and 1e-9 (colours) of the port in f64, at random gradients,
+/// preset over a footprint is the colour map of f (each term the mean of its probes along the
+/// footprint's major axis) at the width of f's gradient, its terms faded by that footprint; within 1e-12 (widths) and 1e-9 (colours) of the port in f64, at random gradients,
 /// footprints (isotropic, anisotropic, both) and points, for marble (T = 2 I) and wood
 /// (T = diag(4, 4, 1), where the footprint along r counts a quarter).
 #[test]
@@ -1067,9 +1102,10 @@ fn footprint_filter_is_apst_9_and_matches_the_port() {
         let p = [p[0], p[1], p[2]];
         for (which, sigma, column) in [(1, 2.0, 2), (0, 4.0, 3)] {
             let tf = if which == 1 { term(2.0, 2.0) } else { term(4.0, 1.0) };
-            // The port fades term i by k sigma fw: a width of tf / sigma fades it by k tf.
+            // The port's gradient fades term i by k sigma fw: a width of tf / sigma fades it by k tf.
             let (prm, mode, clut) = preset(which, tf / sigma, 0.0);
-            let f = hart::solid(identity, p, &prm);
+            let (at_fw, _, _) = preset(which, fw, 0.0);
+            let f = hart::solid_footprint(p, &at_fw, [dx[0], dx[1], dx[2]], [dy[0], dy[1], dy[2]]);
             let grad_f = hart::solid_gradient(identity, p, &prm);
             let expected = hart::colormap(&clut, mode, f, width(&grad_f));
             for k in 0..3 {

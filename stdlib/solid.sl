@@ -235,6 +235,20 @@ vector hart_linear(vector d; matrix T)
     return vector(y[0], y[1], y[2]);
 }
 
+// The isotropic blur fw in T space, stretch(T) |fw|, at most 1e30.
+float _patina_hart_blur(matrix T; float fw)
+{
+    return min(hart_stretch(T) * min(abs(fw), 1e30), 1e30);
+}
+
+// A footprint from its parts: sqrt(iso^2 + (a2 + b2) / 2) for an isotropic blur iso and a
+// parallelogram whose sides' squared lengths are a2 and b2 (below 1e38: the callers' clamped
+// derivatives); past iso = 1e18 iso itself, so nothing overflows.
+float _patina_hart_footprint(float iso, a2, b2)
+{
+    return iso > 1e18 ? iso : min(sqrt(iso * iso + 0.5 * (a2 + b2)), 1e30);
+}
+
 // The filter width a noise term of frequency 1 sees, its argument's footprint: the isotropic
 // blur fw stretched by T (stretch(T) fw) and the parallelogram dpdx, dpdy carried through T's
 // linear part L, sqrt((stretch(T) fw)^2 + (|dpdx L|^2 + |dpdy L|^2) / 2). The derivatives are
@@ -242,9 +256,8 @@ vector hart_linear(vector d; matrix T)
 // overflows.
 float hart_term_footprint(matrix T; float fw; vector dpdx, dpdy)
 {
-    float iso = min(hart_stretch(T) * min(abs(fw), 1e30), 1e30);
     vector x = hart_linear(hart_clamp_vector(dpdx), T), y = hart_linear(hart_clamp_vector(dpdy), T);
-    return iso > 1e18 ? iso : min(sqrt(iso * iso + 0.5 * (x . x + y . y)), 1e30);
+    return _patina_hart_footprint(_patina_hart_blur(T, fw), x . x, y . y);
 }
 
 // The noise term of frequency k over a footprint: the mean of snoise3 at `probes` points spread
@@ -296,7 +309,7 @@ float hart_solid_footprint(point p; matrix Q; float nterms, amp, gain; matrix T;
     point s = hart_clamp_point(p);
     float nt = clamp(nterms, 0, HART_MAX_TERMS);
     float lac = clamp(lacunarity, 1, 8);
-    float iso = min(hart_stretch(T) * min(abs(fw), 1e30), 1e30);
+    float iso = _patina_hart_blur(T, fw);
     vector x = hart_linear(hart_clamp_vector(dpdx), T), y = hart_linear(hart_clamp_vector(dpdy), T);
     float xx = x . x, yy = y . y;
     vector major = xx >= yy ? x : y;
@@ -309,7 +322,7 @@ float hart_solid_footprint(point p; matrix Q; float nterms, amp, gain; matrix T;
     for (i = 0; i < nt; i += 1) {
         float probes = clamp(ceil(2 * k * lmajor), 1, HART_MAX_PROBES);
         float piece = lmajor / probes;
-        float width = iso > 1e18 ? iso : min(sqrt(iso * iso + 0.5 * (minor2 + piece * piece)), 1e30);
+        float width = _patina_hart_footprint(iso, minor2, piece * piece);
         float n = hart_term_probes(k * ts + ph, major, k, probes, width);
         f += clamp(nt - i, 0, 1) * a * (0.5 + 0.5 * n);
         a *= g;

@@ -1047,9 +1047,10 @@ fn gpu_matches_the_interpreter() {
 /// The footprint filter: `hart_footprint_width` is APST's ||grad_xy f|| (9) joined with the
 /// isotropic width, `hart_term_footprint` carries the footprint through T's linear part, and a
 /// preset over a footprint is the colour map of f (each term the mean of its probes along the
-/// footprint's major axis) at the width of f's gradient, its terms faded by that footprint; within 1e-12 (widths) and 1e-9 (colours) of the port in f64, at random gradients,
-/// footprints (isotropic, anisotropic, both) and points, for marble (T = 2 I) and wood
-/// (T = diag(4, 4, 1), where the footprint along r counts a quarter).
+/// footprint's major axis) at the width of f's gradient, its terms faded by that footprint;
+/// within 1e-12 (widths) and 1e-9 (colours) of the port in f64, at random gradients, footprints
+/// (isotropic, anisotropic, both) and points, for marble (T = 2 I) and wood (T = diag(4, 4, 1),
+/// where the footprint along r counts a quarter).
 #[test]
 fn footprint_filter_is_apst_9_and_matches_the_port() {
     let program = support::program(

@@ -16,7 +16,7 @@ add() { # add DIR FILE
 }
 
 shopt -s nullglob
-for f in "$root"/examples/shaders/*.sl "$root"/stdlib/*.sl "$root"/docs/stdlib/swatches/*.sl; do
+for f in "$root"/examples/shaders/*.sl "$root"/compiler/stdlib/*.sl "$root"/docs/stdlib/swatches/*.sl; do
     add "$corpus/parse" "$f"
     add "$corpus/check" "$f"
 done

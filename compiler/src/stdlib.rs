@@ -6,16 +6,16 @@ pub const PREFIX: &str = "<stdlib>";
 
 /// Every module: its file name and its source.
 pub const MODULES: &[(&str, &str)] = &[
-    ("pattern.sl", include_str!("../../stdlib/pattern.sl")),
-    ("noise.sl", include_str!("../../stdlib/noise.sl")),
-    ("fractal.sl", include_str!("../../stdlib/fractal.sl")),
-    ("lattice.sl", include_str!("../../stdlib/lattice.sl")),
-    ("cellular.sl", include_str!("../../stdlib/cellular.sl")),
-    ("color.sl", include_str!("../../stdlib/color.sl")),
-    ("volume.sl", include_str!("../../stdlib/volume.sl")),
-    ("lighting.sl", include_str!("../../stdlib/lighting.sl")),
-    ("solid.sl", include_str!("../../stdlib/solid.sl")),
-    ("shaders.sl", include_str!("../../stdlib/shaders.sl")),
+    ("pattern.sl", include_str!("../stdlib/pattern.sl")),
+    ("noise.sl", include_str!("../stdlib/noise.sl")),
+    ("fractal.sl", include_str!("../stdlib/fractal.sl")),
+    ("lattice.sl", include_str!("../stdlib/lattice.sl")),
+    ("cellular.sl", include_str!("../stdlib/cellular.sl")),
+    ("color.sl", include_str!("../stdlib/color.sl")),
+    ("volume.sl", include_str!("../stdlib/volume.sl")),
+    ("lighting.sl", include_str!("../stdlib/lighting.sl")),
+    ("solid.sl", include_str!("../stdlib/solid.sl")),
+    ("shaders.sl", include_str!("../stdlib/shaders.sl")),
 ];
 
 /// The source of the standard-library module `name` (e.g. `"pattern.sl"`).
@@ -24,11 +24,11 @@ pub fn source(name: &str) -> Option<&'static str> {
 }
 
 /// The built-in functions whose implementations are written in the language, in
-/// `stdlib/builtins.sl` (as `__NAME_RESULT` overloaded by parameter types).
+/// `compiler/stdlib/builtins.sl` (as `__NAME_RESULT` overloaded by parameter types).
 pub const LIBRARY_BUILTINS: &[&str] = &["noise", "snoise", "pnoise", "cellnoise"];
 
 /// The file that implements the library built-ins; it is not for `#include`.
-const LIBRARY: &str = include_str!("../../stdlib/builtins.sl");
+const LIBRARY: &str = include_str!("../stdlib/builtins.sl");
 
 /// Whether `name` is a built-in written in the language.
 pub fn is_library_builtin(name: &str) -> bool {
@@ -51,7 +51,7 @@ pub fn mentions_library_builtins(sources: &crate::source::SourceMap) -> bool {
     })
 }
 
-/// Parses `stdlib/builtins.sl` into `sources` (as `<stdlib>/builtins.sl`), for the semantic stage.
+/// Parses `compiler/stdlib/builtins.sl` into `sources` (as `<stdlib>/builtins.sl`), for the semantic stage.
 pub fn parse_library_builtins(
     sources: &mut crate::source::SourceMap,
     loader: &dyn crate::syntax::preprocess::SourceLoader,

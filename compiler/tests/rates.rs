@@ -122,7 +122,7 @@ fn the_call<'s>(shader: &'s Shader, name: &str) -> (&'s str, &'s [patina_compile
 }
 
 /// The result of the one inlined call of the library built-in `name` (written in the language,
-/// `stdlib/builtins.sl`): the temporary `__NAME_TYPE result` its implementation returns into.
+/// `compiler/stdlib/builtins.sl`): the temporary `__NAME_TYPE result` its implementation returns into.
 fn the_library_call<'s>(shader: &'s Shader, name: &str) -> &'s Local {
     let prefix = format!("__{name}_");
     let results: Vec<&Local> =

@@ -1,4 +1,4 @@
-//! The standard library's fractal sums (`stdlib/fractal.sl`) on the interpreter, against an
+//! The standard library's fractal sums (`compiler/stdlib/fractal.sl`) on the interpreter, against an
 //! independent Rust port of the same formulas (module `fractal`, below) on top of a port of
 //! Perlin's reference improved noise (module `reference`, copied from `stdlib_noise.rs`).
 //!
@@ -99,7 +99,7 @@ mod reference {
     }
 }
 
-/// The formulas of `stdlib/fractal.sl`, ported from their definitions (Musgrave, Perlin) in f64,
+/// The formulas of `compiler/stdlib/fractal.sl`, ported from their definitions (Musgrave, Perlin) in f64,
 /// operation for operation in the stdlib's order.
 mod fractal {
     /// How the precision rounds the scaled points p lacunarity^i: f64 itself, or to f32.

@@ -1,4 +1,4 @@
-//! The standard library's noise core (`stdlib/noise.sl`) on the interpreter, against Perlin's
+//! The standard library's noise core (`compiler/stdlib/noise.sl`) on the interpreter, against Perlin's
 //! reference implementation of improved noise (ImprovedNoise.java, 2002), ported to Rust in this
 //! file (module `reference`) independently of the stdlib's code.
 //!

@@ -1,4 +1,4 @@
-//! The standard library's shaping and antialiased pattern functions (`stdlib/pattern.sl`) on the
+//! The standard library's shaping and antialiased pattern functions (`compiler/stdlib/pattern.sl`) on the
 //! interpreter, in f32 and f64.
 //!
 //! What is measured (run with `--nocapture` to see the numbers):

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A model of the clouds bench plane (examples/scenes/bench/hart_clouds.toml) for choosing how
-hart_solid_footprint (stdlib/solid.sl) estimates a noise term's pixel average.
+hart_solid_footprint (compiler/stdlib/solid.sl) estimates a noise term's pixel average.
 
 The clouds map is linear and never clamps here, so the image's error is the error of
 f = sum_i a_i (0.5 + 0.5 S n(k_i p)) alone: this script renders f's pixel averages by k x k
@@ -10,7 +10,7 @@ Needs NumPy; runs in about a minute. Usage: python3 docs/stdlib/solid_footprint_
 """
 import numpy as np
 
-# Perlin's improved noise (stdlib/noise.sl, perlin_improved_noise).
+# Perlin's improved noise (compiler/stdlib/noise.sl, perlin_improved_noise).
 P = np.array([
     151, 160, 137, 91, 90, 15, 131, 13, 201, 95, 96, 53, 194, 233, 7, 225, 140, 36, 103, 30, 69,
     142, 8, 99, 37, 240, 21, 10, 23, 190, 6, 148, 247, 120, 234, 75, 0, 26, 197, 62, 94, 252, 219,

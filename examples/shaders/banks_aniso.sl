@@ -1,7 +1,7 @@
 // The Banks / Heidrich-Seidel anisotropic lighting model in the two styles of W. R. Mark's chapter
 // of Texturing & Modeling (shared/seeds/002_a44091d2843c02ac.txt L3259-3401). The fibres run along
 // the binormal B, as in the listings; the table is indexed by (0.5 B.E + 0.5, 0.5 B.L + 0.5) and
-// holds the diffuse term sqrt(1 - (B.L)^2) and the specular term (V.R)^n (stdlib/lighting.sl
+// holds the diffuse term sqrt(1 - (B.L)^2) and the specular term (V.R)^n (compiler/stdlib/lighting.sl
 // banks_table; the `banks:N:n` generated texture, runtime/src/render/textures.rs).
 #include <lighting.sl>
 

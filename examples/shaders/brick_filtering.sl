@@ -1,5 +1,5 @@
 // Peachey's brick wall laid on a receding strip, point-sampled or box-filtered (T&M ch. 2,
-// L1559-1620 and L2120-2141; stdlib/pattern.sl's brick and filteredbrick). The strip is
+// L1559-1620 and L2120-2141; compiler/stdlib/pattern.sl's brick and filteredbrick). The strip is
 // `width` x `length` world units mapped to (s, t); the bricks keep their size in those units, so
 // in the distance many bricks fall into one pixel. antialias 0 point-samples the brick at
 // `samples` x `samples` stratified points of the pixel's footprint in (s, t) (the footprint is

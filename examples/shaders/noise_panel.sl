@@ -34,7 +34,7 @@ surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
     float region = k == 1 ? 0 : (k == 15 ? 13 : k);
     point p = point(frequency * u + 17 * region, frequency * v + 5 * region, slice);
     // vnoise, vgnoise, vcnoise, scnoise and worley_basis declare their loop counters `constant`
-    // (stdlib/lattice.sl, cellular.sl), so they cannot be called under a varying condition
+    // (compiler/stdlib/lattice.sl, cellular.sl), so they cannot be called under a varying condition
     // (E0605): they are evaluated at every point, outside the tile selection, and selected below.
     float vn = vnoise(p), vg = vgnoise(p), vc = vcnoise(p), sc = scnoise(p);
     matrix wb = worley_basis(p, k == 15 ? 1 : 0);

@@ -4,7 +4,7 @@
 // triangle (centre, tip, inner vertex) of its half-wedge is inside the star. Departures from
 // the listing: the angle within the half-wedge is a * starangle (the listing takes the fraction
 // a in [0, 0.5] itself as an angle in radians, stdlib-catalogue §3.6), and the edge is
-// box-filtered: the signed distance to the edge through filteredstep (stdlib/pattern.sl) over
+// box-filtered: the signed distance to the edge through filteredstep (compiler/stdlib/pattern.sl) over
 // the pixel's width in (s, t), instead of step's hard edge. `samples` (the cost knob) splits the
 // pixel's footprint into samples x samples sub-pixels, each filtered over its own width.
 // `saspect` stretches s, so that the star is not squashed on a sphere, whose s runs twice as

@@ -1,4 +1,4 @@
-//! The standard library's cellular module (`stdlib/cellular.sl`): RenderMan's cellnoise and
+//! The standard library's cellular module (`compiler/stdlib/cellular.sl`): RenderMan's cellnoise and
 //! Worley's cellular basis F1-F4, on the interpreter (f32 and f64) and on the GPU, against an
 //! independent Rust port written here from the definitions (module `port`: a cube's population
 //! from Worley's table, its points from his LCG, T&M L4093-4380, found by sorting every point of

@@ -1,4 +1,4 @@
-//! `stdlib/color.sl` (colour tables with Hart's filtering) and the built-in colour spaces
+//! `compiler/stdlib/color.sl` (colour tables with Hart's filtering) and the built-in colour spaces
 //! (`ctransform`, colour casts) on the interpreter in f64 and f32 against independent ports written
 //! here, and on the GPU against the interpreter. Run with `--nocapture` to see the measured numbers.
 //!

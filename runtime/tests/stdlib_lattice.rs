@@ -1,4 +1,4 @@
-//! The standard library's lattice module (`stdlib/lattice.sl`): the PCG lattice hash and Peachey's
+//! The standard library's lattice module (`compiler/stdlib/lattice.sl`): the PCG lattice hash and Peachey's
 //! lattice noises, on the interpreter (f32 and f64) and on the GPU, against an independent Rust
 //! port written here from the definitions (module `port`: Jarzynski & Olano's `pcg`, Peachey's
 //! formulas, T&M L2246-2658).

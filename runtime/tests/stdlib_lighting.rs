@@ -1,4 +1,4 @@
-//! stdlib/lighting.sl and stdlib/shaders.sl on the interpreter (f32 and f64) and on the GPU (the
+//! compiler/stdlib/lighting.sl and shaders.sl on the interpreter (f32 and f64) and on the GPU (the
 //! WGSL backend's compute kernel), with lights bound: the language versions of RenderMan's light
 //! sums against the built-ins, every function against an independent Rust port of its formula
 //! (RI 3.2 §15.6; Kajiya & Kay eqs. 14 and 16; Heidrich & Seidel's form of Banks' model), the
@@ -647,7 +647,7 @@ fn extreme_inputs_give_finite_results_on_both_backends() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// stdlib/shaders.sl: the standard lights and surfaces.
+// compiler/stdlib/shaders.sl: the standard lights and surfaces.
 
 const SHADERS: &str = "#include <shaders.sl>\n";
 

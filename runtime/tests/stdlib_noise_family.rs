@@ -1,4 +1,4 @@
-//! The gradient-noise family of `stdlib/noise.sl` (improved noise over 1D, 2D and 4D with the
+//! The gradient-noise family of `compiler/stdlib/noise.sl` (improved noise over 1D, 2D and 4D with the
 //! RenderMan conventions, periodic noise, Perlin's original noise, vector noise, the analytic
 //! gradient, flow noise) on the interpreter (f32 and f64) and on the GPU, against an independent
 //! Rust port written here from the definitions (module `port`: Perlin's ImprovedNoise.java

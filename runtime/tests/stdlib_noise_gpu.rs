@@ -1,4 +1,4 @@
-//! The standard library's noise core (`stdlib/noise.sl`) on the GPU: the same shader compiled as
+//! The standard library's noise core (`compiler/stdlib/noise.sl`) on the GPU: the same shader compiled as
 //! a compute kernel by the WGSL backend, against the interpreter's f32 mode, over a few thousand
 //! points (random ones, cell and period edges, lattice points, offsets 2^k up to 2^24, and every
 //! combination of the extreme coordinates 0, ±1e-30, ±1e-40 (an f32 denormal), ±1e4, ±1e6, ±1e7,

@@ -1,4 +1,4 @@
-//! The standard library's shaping and antialiased pattern functions (`stdlib/pattern.sl`) on the
+//! The standard library's shaping and antialiased pattern functions (`compiler/stdlib/pattern.sl`) on the
 //! GPU: the shaders compiled as compute kernels by the WGSL backend, against the interpreter's f32
 //! mode, over random arguments and the extremes (w = 0, tiny, 1e6; x = ±1e6; b, g = 0 and 1).
 //!

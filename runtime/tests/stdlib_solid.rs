@@ -1,4 +1,4 @@
-//! Hart's parameterized solid texture (`stdlib/solid.sl`) on the interpreter (f64 and f32) and on
+//! Hart's parameterized solid texture (`compiler/stdlib/solid.sl`) on the interpreter (f64 and f32) and on
 //! the GPU, against an independent Rust port of APST's formulas (module `hart`, below) on top of
 //! a port of Perlin's reference improved noise (module `reference`).
 //!

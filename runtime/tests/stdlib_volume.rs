@@ -1,4 +1,4 @@
-//! The standard library's volume and hypertexture module (`stdlib/volume.sl`) on the interpreter
+//! The standard library's volume and hypertexture module (`compiler/stdlib/volume.sl`) on the interpreter
 //! (f32 and f64) and on the GPU (the WGSL backend's compute kernel, lavapipe), against references
 //! written here from the sources' definitions (Perlin & Hoffert's soft sphere and booleans, the
 //! printed Wyvill polynomial, the standard Henyey-Greenstein formula, `-expm1(-x)` for the step

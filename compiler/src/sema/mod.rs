@@ -53,14 +53,14 @@ fn functions<'a>(module: &'a ast::Module, diags: &mut Diagnostics) -> FunctionTa
 pub struct Checked {
     /// The shaders without errors.
     pub program: Program,
-    /// Whether the module calls a built-in written in the language (`stdlib/builtins.sl`) while
+    /// Whether the module calls a built-in written in the language (`compiler/stdlib/builtins.sl`) while
     /// `library` was not given: check again with it.
     pub wants_library: bool,
 }
 
 /// Checks a parsed module and lowers each of its shaders to the typed IR. Shaders with errors are
 /// left out of the program; their diagnostics are in `diags`. `library` is the parsed
-/// `stdlib/builtins.sl`, whose functions implement the library built-ins.
+/// `compiler/stdlib/builtins.sl`, whose functions implement the library built-ins.
 /// `stdlib_files` are the files of the standard library among those the module was read from.
 pub fn check(
     module: &ast::Module,

@@ -1,4 +1,4 @@
-// Swatch for docs/stdlib/volume.md: Wyvill's cubic blend (stdlib/volume.sl) of three point
+// Swatch for docs/stdlib/volume.md: Wyvill's cubic blend (compiler/stdlib/volume.sl) of three point
 // primitives of radius R = 1.1 in the slice z = 0, over (x, y) in [-2, 2]^2: the summed field in
 // grey, the 0.5 contour (the blended surface) in orange; each field is exactly 0 beyond R.
 #include <volume.sl>

@@ -1,4 +1,4 @@
-// Swatch for docs/stdlib/volume.md: Perlin & Hoffert's noisy sphere (stdlib/volume.sl) ray-marched
+// Swatch for docs/stdlib/volume.md: Perlin & Hoffert's noisy sphere (compiler/stdlib/volume.sl) ray-marched
 // front to back, orthographically along +z through its bounding sphere: 48 steps, opacity per step
 // volume_opacity(20 density h) through volume_composite, each step shaded by the outward normal
 // from central differences of the density (volume_density_normal) with one distant light, and a

@@ -1,4 +1,4 @@
-// Swatch for docs/stdlib/volume.md: the slice z = 0 of three soft shapes (stdlib/volume.sl), red a
+// Swatch for docs/stdlib/volume.md: the slice z = 0 of three soft shapes (compiler/stdlib/volume.sl), red a
 // soft sphere, green a soft box, blue a soft torus around z, over (x, y) in [-2, 2]^2. Where they
 // overlap the channels add; the soft edges are the linear-in-r^2 ramps of Perlin & Hoffert.
 #include <volume.sl>

@@ -10,7 +10,7 @@
 //!   s = (x + ½) / N, t = (y + ½) / N read as a = 2s − 1 = T·V and b = 2t − 1 = T·L, the texel is
 //!   (√(1 − b²), max(0, √(1 − b²) √(1 − a²) − ab)^P, 0, 1): the diffuse and the specular term,
 //!   which a shader weights by its kd and ks. The same values as the standard library's
-//!   `banks_table(s, t, 1, 0, P)` and `banks_table(s, t, 0, 1, P)` (stdlib/lighting.sl), computed
+//!   `banks_table(s, t, 1, 0, P)` and `banks_table(s, t, 0, 1, P)` (compiler/stdlib/lighting.sl), computed
 //!   here in f64 and rounded once;
 //! - `blobs3d:N`: a synthetic density volume, N³ texels (default 32), for volume rendering. At the
 //!   texel centre c = ((x, y, z) + ½) / N the density is the sum, clamped to [0, 1], of two soft

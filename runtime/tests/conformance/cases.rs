@@ -473,7 +473,7 @@ pub fn colour_spaces() -> Vec<Case> {
 }
 
 /// The noise built-ins (`noise`, `snoise`, `pnoise`, `cellnoise`), written in the language
-/// (stdlib/builtins.sl over stdlib/noise.sl and stdlib/cellular.sl): floor, integer hashing and
+/// (compiler/stdlib/builtins.sl over noise.sl and cellular.sl): floor, integer hashing and
 /// polynomials, so the two backends agree bit for bit. Every overload, with float results and
 /// with colour results (three float evaluations at offset domains or seeds); coordinates across
 /// many cells, both signs, on lattice points and far out; periods including the guarded ones

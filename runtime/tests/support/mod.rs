@@ -81,7 +81,7 @@ pub const PERLIN_PERMUTATION: [i32; 256] = [
     66, 215, 61, 156, 180,
 ];
 
-/// The lattice hash of `stdlib/lattice.sl`, ported from its definition (PCG's output permutation,
+/// The lattice hash of `compiler/stdlib/lattice.sl`, ported from its definition (PCG's output permutation,
 /// nested over the coordinates): for the tests of the lattice and cellular noises.
 pub mod lattice_hash {
     /// PCG's output permutation of one 32-bit state.

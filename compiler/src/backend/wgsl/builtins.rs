@@ -316,7 +316,7 @@ impl Translator<'_> {
                     span,
                     format!(
                         "`{}` reached the WGSL backend as a built-in; the semantic stage inlines its \
-                         implementation from stdlib/builtins.sl",
+                         implementation from compiler/stdlib/builtins.sl",
                         b.name
                     ),
                 ));

@@ -336,7 +336,7 @@ impl Lowerer<'_> {
     }
 
     /// A built-in written in the language (`noise`, `cellnoise`, ...): inlines its implementation
-    /// from `stdlib/builtins.sl`, the function `__NAME_RESULT` whose parameters have the
+    /// from `compiler/stdlib/builtins.sl`, the function `__NAME_RESULT` whose parameters have the
     /// overload's types. Without the library loaded, asks for it (the caller checks again).
     fn library_builtin(
         &mut self,

@@ -22,7 +22,7 @@ use super::convert;
 pub type FunctionTable<'a> = FxHashMap<SmolStr, Vec<&'a ast::FunctionDef>>;
 
 /// The functions calls can reach: the file's own, and the standard library's implementations of
-/// library built-ins (`stdlib/builtins.sl`), which only built-in calls and library code reach.
+/// library built-ins (`compiler/stdlib/builtins.sl`), which only built-in calls and library code reach.
 #[derive(Default)]
 pub struct Functions<'a> {
     /// The file's top-level functions (and those of the files it includes).
@@ -245,7 +245,7 @@ impl<'a> Lowerer<'a> {
 }
 
 impl Lowerer<'_> {
-    /// Whether the code being lowered is a library built-in's (`stdlib/builtins.sl`).
+    /// Whether the code being lowered is a library built-in's (`compiler/stdlib/builtins.sl`).
     fn in_library(&self) -> bool {
         self.frames.last().is_some_and(|f| f.library)
     }

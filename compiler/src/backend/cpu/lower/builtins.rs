@@ -183,7 +183,9 @@ impl Lower<'_> {
                     span,
                     "this call",
                 )
-                .with_note("the semantic stage inlines its implementation from stdlib/builtins.sl"));
+                .with_note(
+                    "the semantic stage inlines its implementation from compiler/stdlib/builtins.sl",
+                ));
             }
             "__texel2d" | "__texel3d" => {
                 let texture = self.texture_index(args[0])?;

@@ -1,4 +1,4 @@
-// stdlib/lattice.sl: integer lattice hashes and Peachey's lattice noises (value noise, gradient
+// compiler/stdlib/lattice.sl: integer lattice hashes and Peachey's lattice noises (value noise, gradient
 // noise, value-gradient noise, lattice convolution noise, sparse convolution noise).
 // See docs/stdlib/lattice.md for formulas, sources, errata decisions and measured precision.
 //

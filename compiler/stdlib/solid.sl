@@ -12,7 +12,7 @@
 // T&M L10447-10450), so a filtered texture loses its octaves as the filter width grows.
 // docs/stdlib/solid.md has the formulas, the errata decisions and the measured precision.
 //
-// Conventions. n is RenderMan's unsigned noise, noise3 (stdlib/noise.sl: Perlin's improved
+// Conventions. n is RenderMan's unsigned noise, noise3 (compiler/stdlib/noise.sl: Perlin's improved
 // noise scaled into [0, 1], 0.5 at lattice points): APST's noise is in [0, 1] too (Rayshade's
 // lattice noise, L346), and the seed's colour maps (clamped blue to white for clouds) expect
 // non-negative indices. The noise terms are T_i(s) = lacunarity^i (s T) + phase for
@@ -144,7 +144,7 @@ vector hart_grad_vector(int hash)
 
 #define HART_P(i) hart_p[(i) & 255]
 
-// The analytic gradient of Perlin's improved noise (perlin_improved_noise of stdlib/noise.sl:
+// The analytic gradient of Perlin's improved noise (perlin_improved_noise of compiler/stdlib/noise.sl:
 // the same cell, hash and gradients; Perlin's table is repeated here): with u = fade(x),
 // u' = 30 x^2 (x - 1)^2 and n_abc the corner dot products,
 // dn/dx = u' lerp(w, lerp(v, n100 - n000, n110 - n010), lerp(v, n101 - n001, n111 - n011))

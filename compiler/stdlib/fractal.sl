@@ -1,6 +1,6 @@
 // Fractal sums of noise: Musgrave's fBm with a fractional last octave, Perlin's turbulence,
 // Musgrave's ridged and hybrid multifractals, and an fBm that drops the octaves finer than a
-// filter width. Every basis is snoise3 (stdlib/noise.sl: Perlin's improved noise, signed, in
+// filter width. Every basis is snoise3 (compiler/stdlib/noise.sl: Perlin's improved noise, signed, in
 // [-1, 1]); this file includes noise.sl itself.
 //
 // Sources: Texturing & Modeling, 3rd ed. (shared/seeds/002_a44091d2843c02ac.txt): Musgrave ch. 14
@@ -24,7 +24,7 @@
 // clamped to +-1e30 (PATINA_FRACTAL_MAX_COORD), so that p lacunarity^i stays finite for every
 // finite p; the multifractals' offsets are clamped to +-1e4 (PATINA_FRACTAL_MAX_OFFSET). Octave i
 // samples the noise at p * lacunarity^i, so in f32 the finer octaves lose their fraction sooner
-// than the first (stdlib/noise.sl: past 2^23 every f32 is an integer and the noise is 0; those
+// than the first (compiler/stdlib/noise.sl: past 2^23 every f32 is an integer and the noise is 0; those
 // octaves then add nothing, which is finite but not detail).
 //
 // Precision (measured by compiler/tests/stdlib_fractal.rs and runtime/tests/stdlib_fractal_gpu.rs):
@@ -254,7 +254,7 @@ float hetero_terrain(point p; float H, lacunarity, octaves, offset)
 
 // Musgrave's vector-valued noise VecNoise (T&M ch. 15, L10370-10380): three signed noises at p,
 // p + 3.33 and p + 7.77 (each component displaced). Each component is in [-1, 1]. Named with the
-// prefix so as not to collide with the vector noises of stdlib/noise.sl.
+// prefix so as not to collide with the vector noises of compiler/stdlib/noise.sl.
 vector musgrave_vecnoise(point p)
 {
     return vector(snoise3(p), snoise3(p + 3.33), snoise3(p + 7.77));

@@ -1,4 +1,4 @@
-// stdlib/cellular.sl: RenderMan's cellnoise and Worley's cellular texture basis (F1-F4 with the
+// compiler/stdlib/cellular.sl: RenderMan's cellnoise and Worley's cellular texture basis (F1-F4 with the
 // feature points' positions and ids). See docs/stdlib/cellular.md.
 //
 // Sources: RenderMan Interface 3.2 (cellnoise: constant on each unit cell, in [0, 1)); Worley,

@@ -4,7 +4,7 @@
 // both backends run this code and nothing else. This file is not for `#include`; its functions
 // see only each other and what it includes, never the calling file's functions.
 //
-// Float results are the stdlib's noises directly (stdlib/noise.sl, stdlib/cellular.sl). A colour,
+// Float results are the stdlib's noises directly (compiler/stdlib/noise.sl, cellular.sl). A colour,
 // point or vector result has three components: the same noise at three domain offsets (noise,
 // snoise, pnoise), or three independent hash streams (cellnoise: seeds 0, 1, 2). The offsets are
 // far from the origin and not lattice-aligned, so the components are decorrelated; a periodic
@@ -52,7 +52,7 @@
     PATINA_NOISE_TRIPLE(NAME, point, F1, F2, F3, F4) \
     PATINA_NOISE_TRIPLE(NAME, vector, F1, F2, F3, F4)
 
-// noise in [0, 1] and snoise in [-1, 1]: Perlin's improved noise (stdlib/noise.sl).
+// noise in [0, 1] and snoise in [-1, 1]: Perlin's improved noise (compiler/stdlib/noise.sl).
 PATINA_NOISE(noise, noise1, noise2, noise3, noise4)
 PATINA_NOISE(snoise, snoise1, snoise2, snoise3, snoise4)
 
@@ -89,7 +89,7 @@ PATINA_PNOISE_TRIPLE(color)
 PATINA_PNOISE_TRIPLE(point)
 PATINA_PNOISE_TRIPLE(vector)
 
-// cellnoise: one value in [0, 1) per unit cell (stdlib/cellular.sl); components are streams.
+// cellnoise: one value in [0, 1) per unit cell (compiler/stdlib/cellular.sl); components are streams.
 float __cellnoise_float(float x) { return cellnoise1(x, 0); }
 float __cellnoise_float(float x, y) { return cellnoise2(x, y, 0); }
 float __cellnoise_float(point p) { return cellnoise3(p, 0); }

@@ -101,6 +101,25 @@ impl Diagnostic {
     }
 }
 
+impl std::fmt::Display for Severity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        })
+    }
+}
+
+/// One line, as the headline of [`render_text`] shows it: `error[E0306]: message`. The labels,
+/// notes and help need the [`SourceMap`](crate::source::SourceMap), so only the renderers show them.
+impl std::fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}[{}]: {}", self.severity, self.code, self.message)
+    }
+}
+
+impl std::error::Error for Diagnostic {}
+
 /// Collects diagnostics as a stage runs.
 #[derive(Default, Debug, Clone)]
 pub struct Diagnostics {
@@ -164,5 +183,66 @@ impl IntoIterator for Diagnostics {
     type IntoIter = std::vec::IntoIter<Diagnostic>;
     fn into_iter(self) -> Self::IntoIter {
         self.list.into_iter()
+    }
+}
+
+/// One line per diagnostic, each as [`Diagnostic`]'s `Display` shows it, in the order they were
+/// found (no line at all when there is none).
+impl std::fmt::Display for Diagnostics {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (i, d) in self.list.iter().enumerate() {
+            if i > 0 {
+                f.write_str("\n")?;
+            }
+            write!(f, "{d}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for Diagnostics {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn reserved() -> Diagnostic {
+        Diagnostic::error(Code::ReservedWord, "`class` is a reserved word", Span::default(), "here")
+            .with_note("not shown in one line")
+            .with_help("rename it")
+    }
+
+    #[test]
+    fn a_diagnostic_displays_as_its_headline() {
+        assert_eq!(reserved().to_string(), "error[E0306]: `class` is a reserved word");
+        let warning = Diagnostic::warning(Code::LightLimit, "too many lights", Span::default(), "");
+        assert_eq!(warning.to_string(), "warning[E0704]: too many lights");
+    }
+
+    #[test]
+    fn diagnostics_display_one_line_each() {
+        let mut list = Diagnostics::default();
+        assert_eq!(list.to_string(), "");
+        list.push(reserved());
+        assert_eq!(list.to_string(), "error[E0306]: `class` is a reserved word");
+        list.push(Diagnostic::warning(Code::UnknownInput, "no input `Q`", Span::default(), ""));
+        assert_eq!(
+            list.to_string(),
+            "error[E0306]: `class` is a reserved word\nwarning[E0703]: no input `Q`"
+        );
+    }
+
+    #[test]
+    fn diagnostics_are_errors_for_question_marks() {
+        fn fails() -> Result<(), Box<dyn std::error::Error>> {
+            Err(reserved())?
+        }
+        fn fails_with_all() -> Result<(), Box<dyn std::error::Error + Send + Sync>> {
+            let mut list = Diagnostics::default();
+            list.push(reserved());
+            Err(list)?
+        }
+        assert_eq!(fails().unwrap_err().to_string(), "error[E0306]: `class` is a reserved word");
+        assert_eq!(fails_with_all().unwrap_err().to_string(), "error[E0306]: `class` is a reserved word");
     }
 }

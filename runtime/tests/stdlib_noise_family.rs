@@ -485,7 +485,7 @@ fn ordinary(seed: u64, n: usize) -> Vec<In> {
 
 #[test]
 fn gradient_table_is_the_documented_procedure() {
-    let source = include_str!("../../stdlib/noise.sl");
+    let source = include_str!("../../compiler/stdlib/noise.sl");
     let start = source.find("perlin_g[768] = {").expect("the table") + "perlin_g[768] = {".len();
     let end = start + source[start..].find("};").expect("its end");
     let values: Vec<f64> = source[start..end]

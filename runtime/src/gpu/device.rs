@@ -19,11 +19,19 @@ pub struct Gpu {
 }
 
 impl Gpu {
-    /// Opens the first adapter wgpu offers (Vulkan unless `WGPU_BACKEND` says otherwise) and a
-    /// device with the adapter's best limits.
+    /// The backends [`Gpu::new`] asks wgpu for when `WGPU_BACKEND` does not name them: every
+    /// native backend this build of wgpu has (Vulkan always; Metal, DX12 and GL with the runtime's
+    /// `metal`, `dx12` and `gl` features), never wgpu's no-op backend.
+    pub fn default_backends() -> wgpu::Backends {
+        wgpu::Backends::all() & wgpu::Instance::enabled_backend_features() & !wgpu::Backends::NOOP
+    }
+
+    /// Opens the first adapter wgpu offers among [`Gpu::default_backends`] (or the backends
+    /// `WGPU_BACKEND` names) and a device with the adapter's best limits, then wraps it as
+    /// [`Gpu::from_device`] does.
     pub fn new() -> Result<Gpu, GpuError> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+        desc.backends = wgpu::Backends::from_env().unwrap_or_else(Gpu::default_backends);
         desc.flags = wgpu::InstanceFlags::default().with_env();
         let instance = wgpu::Instance::new(desc);
         let options = wgpu::RequestAdapterOptions {
@@ -37,14 +45,31 @@ impl Gpu {
         // Float32 filtering lets textures keep full precision; blending on Rgba32Float targets
         // needs its own feature. Both are optional: without them we degrade or report errors.
         let wanted = wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::FLOAT32_BLENDABLE;
-        let features = adapter.features() & wanted;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("patina"),
-            required_features: features,
+            required_features: adapter.features() & wanted,
             required_limits: adapter.limits(),
             ..Default::default()
         }))
         .map_err(|e| GpuError::Device(e.to_string()))?;
+        Ok(Gpu::from_device(adapter, device, queue))
+    }
+
+    /// Wraps a device the caller opened, so that Patina draws with the caller's own device and
+    /// queue (`adapter` is the one `device` came from; it names the device and is not otherwise
+    /// used).
+    ///
+    /// Whatever the device was created with is used as it is: sampled textures are
+    /// `Rgba32Float` when it has [`wgpu::Features::FLOAT32_FILTERABLE`], else `Rgba16Float`;
+    /// float targets blend only with [`wgpu::Features::FLOAT32_BLENDABLE`]; renders and
+    /// dispatches are checked against its limits. Ask for those features (as [`Gpu::new`] does)
+    /// for results equal to the runtime's own device.
+    ///
+    /// This replaces the device's uncaptured-error handler and its device-lost callback: errors
+    /// outside Patina's error scopes would otherwise panic, and a lost device is reported as
+    /// [`GpuError::DeviceLost`]. An error the caller's own work raises outside an error scope
+    /// comes back from the next Patina call on this `Gpu`, as a [`GpuError::Wgpu`].
+    pub fn from_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Gpu {
         let uncaptured = Arc::new(Mutex::new(None));
         let sink = Arc::clone(&uncaptured);
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
@@ -59,12 +84,27 @@ impl Gpu {
                 slot.get_or_insert_with(|| format!("{message} ({reason:?})"));
             }
         });
-        let texture_format = if features.contains(wgpu::Features::FLOAT32_FILTERABLE) {
+        let texture_format = if device.features().contains(wgpu::Features::FLOAT32_FILTERABLE) {
             wgpu::TextureFormat::Rgba32Float
         } else {
             wgpu::TextureFormat::Rgba16Float
         };
-        Ok(Gpu { adapter, device, queue, texture_format, uncaptured, lost, pipelines: Default::default() })
+        Gpu { adapter, device, queue, texture_format, uncaptured, lost, pipelines: Default::default() }
+    }
+
+    /// The adapter the device came from.
+    pub fn adapter(&self) -> &wgpu::Adapter {
+        &self.adapter
+    }
+
+    /// The device Patina draws with (the caller's own after [`Gpu::from_device`]).
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    /// The device's queue.
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.queue
     }
 
     /// Destroys the device, as a driver reset would lose it: what runs on this `Gpu` afterwards

@@ -231,7 +231,15 @@ fn compile_writes_wgsl_that_reparses_and_an_interface() {
     let names: Vec<&str> =
         json["uniforms"].as_array().unwrap().iter().map(|u| u["name"].as_str().unwrap()).collect();
     assert!(names.contains(&"l0_intensity") && names.contains(&"camera_to_clip"), "{names:?}");
-    assert_eq!(json["attributes"][0]["name"], "P");
+    // The attributes are named as in the WGSL and say what they carry; plastic reads P and N only.
+    assert_eq!(json["attributes"][0]["name"], "a_P");
+    assert_eq!(json["attributes"][0]["source"]["what"], "position");
+    assert_eq!(json["attributes"].as_array().unwrap().len(), 2);
+    assert!(wgsl.contains("@location(0) a_P: vec3<f32>") && !wgsl.contains("a_uv"), "{wgsl}");
+    assert_eq!(json["version"], 1);
+    for name in &names {
+        assert!(wgsl.contains(&format!("    {name}: ")), "the WGSL has no member {name}");
+    }
 }
 
 #[test]

@@ -68,6 +68,7 @@ fn textured_draw<'a>(module: &'a naga::Module, texture: &'a [TextureData]) -> Dr
         fragment_entry: "fs",
         uniforms: &[],
         textures: texture,
+        samplers: false,
         attributes: &[],
         indices: &[0, 1, 2],
         blend: Blend::Replace,

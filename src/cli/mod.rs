@@ -141,10 +141,15 @@ pub struct CompileArgs {
     /// A light to bind: `NAME` (a light shader of FILE), `PATH` or `PATH:NAME` (repeat for more).
     #[arg(long, value_name = "LIGHT")]
     light: Vec<String>,
-    /// A parameter value to compile in (`NAME=V` or `NAME=V,V,V`; repeat for more): the branches
-    /// it decides and the code only they need are left out (the others stay uniforms).
+    /// A parameter value to compile in (`NAME=V`, `NAME=V,V,V` or `NAME="TEXT"`; repeat for more):
+    /// the branches it decides and the code only they need are left out (the others stay
+    /// uniforms). Points, vectors and normals depend on the view and cannot be fixed.
     #[arg(long, value_name = "NAME=V")]
     fix: Vec<String>,
+    /// Fold the host part into the WGSL, so that the uniform block holds only values a program
+    /// without Patina can fill (parameters, predefined variables, spaces, geometry).
+    #[arg(long)]
+    fold_host: bool,
     /// Where to write NAME.wgsl and NAME.json.
     #[arg(short, long, value_name = "DIR", default_value = ".")]
     output: PathBuf,

@@ -23,7 +23,7 @@ struct Request {
     hint: SmolStr,
 }
 
-pub(super) fn split(shader: &Shader) -> Result<Stages, Diagnostic> {
+pub(super) fn split(shader: &Shader, fold_host: bool) -> Result<Stages, Diagnostic> {
     let placement = Placement::new(shader);
     let mut requests: Vec<(ExprId, Request)> = Vec::new();
     let mut index: FxHashMap<ExprId, usize> = FxHashMap::default();
@@ -33,7 +33,7 @@ pub(super) fn split(shader: &Shader) -> Result<Stages, Diagnostic> {
         let exports: FxHashMap<ExprId, LocalId> =
             requests.iter().filter(|(_, r)| r.from == stage).map(|(e, _)| (*e, LocalId(u32::MAX))).collect();
         let roots = if stage == StageKind::Fragment { outputs(shader) } else { FxHashSet::default() };
-        let slicer = Slicer::analyse(shader, &placement, stage, roots, &exports)?;
+        let slicer = Slicer::analyse(shader, &placement, stage, roots, &exports, fold_host)?;
         for (e, hint) in slicer.imports {
             let from = placement.of(e);
             let i = *index.entry(e).or_insert_with(|| {
@@ -73,7 +73,7 @@ pub(super) fn split(shader: &Shader) -> Result<Stages, Diagnostic> {
             .filter(|((_, r), _)| r.from == stage)
             .map(|((e, _), t)| (*e, t.local))
             .collect();
-        let mut s = Slicer::new(shader, &placement, stage, needed[&stage].clone(), &exports);
+        let mut s = Slicer::new(shader, &placement, stage, needed[&stage].clone(), &exports, fold_host);
         let body = s.block(&shader.body, false);
         if let Some(d) = s.error {
             return Err(d);
@@ -191,6 +191,8 @@ struct Slicer<'a> {
     exported: FxHashSet<ExprId>,
     /// The name of the variable the current statement stores, for name hints.
     target: Option<SmolStr>,
+    /// Whether the host hands nothing up (every stage recomputes what it would have).
+    fold_host: bool,
     grew: bool,
     error: Option<Diagnostic>,
 }
@@ -202,6 +204,7 @@ impl<'a> Slicer<'a> {
         stage: StageKind,
         needed: FxHashSet<Var>,
         exports: &'a FxHashMap<ExprId, LocalId>,
+        fold_host: bool,
     ) -> Self {
         Slicer {
             shader,
@@ -213,6 +216,7 @@ impl<'a> Slicer<'a> {
             exports,
             exported: FxHashSet::default(),
             target: None,
+            fold_host,
             grew: false,
             error: None,
         }
@@ -225,8 +229,9 @@ impl<'a> Slicer<'a> {
         stage: StageKind,
         roots: FxHashSet<Var>,
         exports: &'a FxHashMap<ExprId, LocalId>,
+        fold_host: bool,
     ) -> Result<Self, Diagnostic> {
-        let mut s = Slicer::new(shader, placement, stage, roots, exports);
+        let mut s = Slicer::new(shader, placement, stage, roots, exports, fold_host);
         loop {
             s.grew = false;
             s.exported.clear();
@@ -465,6 +470,9 @@ impl<'a> Slicer<'a> {
     fn transferable(&self, id: ExprId, in_loop: bool) -> bool {
         let e = self.shader.expr(id);
         if in_loop || e.rate.perlight || e.rate.frequency == Frequency::Constant {
+            return false;
+        }
+        if self.fold_host && self.placement.of(id) == StageKind::Host {
             return false;
         }
         // RenderMan users expect varying expressions per shading point (only the inputs are

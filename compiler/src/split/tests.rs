@@ -1,7 +1,7 @@
 //! The split is checked by running it: host, vertex and fragment stages in turn on the
 //! interpreter must give what the whole shader gives, and values must cross where expected.
 
-use super::{StageKind, Stages, split};
+use super::{StageKind, Stages, split, split_folding_host};
 use crate::backend::cpu::{Binding, CpuProgram, Evaluator};
 use crate::ir::{Shader, Stmt};
 use crate::syntax::preprocess::MemoryLoader;
@@ -118,6 +118,38 @@ fn stanford_rates_become_stages() {
     assert_eq!(run_split(&stages, &case), whole);
     let k2 = 1.5f64 * 1.5 + 1.0;
     assert_eq!(whole[0], (0.5 * k2) * (0.5 * k2) + k2);
+
+    // Folded, the host hands nothing up; the vertex stage computes k2 itself, with the same result.
+    let folded = split_folding_host(&sh).unwrap();
+    assert!(transfers(&folded, StageKind::Host).is_empty(), "{:?}", folded.transfers);
+    assert_eq!(stores(&folded.host.body), 0);
+    assert_eq!(transfers(&folded, StageKind::Vertex), vec!["f_v"]);
+    assert_eq!(run_split(&folded, &case), whole);
+}
+
+#[test]
+fn a_folded_host_leaves_renderman_uniforms_to_the_fragment_stage() {
+    let src = "surface t9(float Kd = 0.5; color tint = color(1, 0.5, 0.25)) {
+        uniform color k = tint * Kd * 2 + color(sqrt(Kd));
+        Ci = k * s + color(t);
+    }";
+    let sh = shader(src);
+    let split_stages = split(&sh).unwrap();
+    assert!(!transfers(&split_stages, StageKind::Host).is_empty());
+    let folded = split_folding_host(&sh).unwrap();
+    assert!(folded.transfers.is_empty(), "{:?}", folded.transfers);
+    let s = [0.0, 0.5, 1.0];
+    let t = [1.0, 0.25, 0.0];
+    let case = Case {
+        uniforms: &[("Kd", &[0.8]), ("tint", &[0.2, 0.4, 0.6])],
+        points: 3,
+        columns: &[("s", &s), ("t", &t)],
+        output: "Ci",
+    };
+    let whole = run_whole(&sh, &case);
+    assert_eq!(run_split(&folded, &case), whole);
+    assert_eq!(run_split(&split_stages, &case), whole);
+    assert!((whole[3] - ((0.2 * 0.8 * 2.0 + 0.8f64.sqrt()) * 0.5 + 0.25)).abs() < 1e-12);
 }
 
 #[test]

@@ -68,8 +68,15 @@ pub(super) fn check_draw(
         u64::from(limits.max_sampled_textures_per_shader_stage),
         "max_sampled_textures_per_shader_stage",
     )?;
-    let what = || "the samplers of the textures the shader reads".to_string();
-    within(what, count, u64::from(limits.max_samplers_per_shader_stage), "max_samplers_per_shader_stage")?;
+    if draw.samplers {
+        let what = || "the samplers of the textures the shader reads".to_string();
+        within(
+            what,
+            count,
+            u64::from(limits.max_samplers_per_shader_stage),
+            "max_samplers_per_shader_stage",
+        )?;
+    }
     for (k, t) in draw.textures.iter().enumerate() {
         let (max, name) = match t.dimension {
             TextureDimension::D1 => (limits.max_texture_dimension_1d, "max_texture_dimension_1d"),
@@ -127,6 +134,7 @@ mod tests {
             fragment_entry: "fs",
             uniforms,
             textures: &[],
+            samplers: false,
             attributes: &[],
             indices: &[0, 1, 2],
             blend,

@@ -64,7 +64,8 @@ impl Pipelines {
 fn pipeline_key(draw: &Draw, format: wgpu::TextureFormat) -> Option<u64> {
     let mut h = DefaultHasher::new();
     draw.fingerprint?.hash(&mut h);
-    (draw.vertex_entry, draw.fragment_entry, format, matches!(draw.blend, Blend::Replace)).hash(&mut h);
+    (draw.vertex_entry, draw.fragment_entry, format, matches!(draw.blend, Blend::Replace), draw.samplers)
+        .hash(&mut h);
     draw.attributes.iter().for_each(|a| (a.location, a.components).hash(&mut h));
     draw.uniforms.is_empty().hash(&mut h);
     draw.textures.iter().for_each(|t| texture::view_dimension(t.dimension).hash(&mut h));
@@ -101,16 +102,13 @@ impl Gpu {
                 .iter()
                 .enumerate()
                 .flat_map(|(k, Uploaded { view, sampler })| {
-                    [
-                        wgpu::BindGroupEntry {
-                            binding: 2 * k as u32,
-                            resource: wgpu::BindingResource::TextureView(view),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2 * k as u32 + 1,
-                            resource: wgpu::BindingResource::Sampler(sampler),
-                        },
-                    ]
+                    let texture = wgpu::BindingResource::TextureView(view);
+                    let sampler = wgpu::BindingResource::Sampler(sampler);
+                    let (binding, sampler) =
+                        if draw.samplers { (2 * k as u32, Some(sampler)) } else { (k as u32, None) };
+                    std::iter::once(wgpu::BindGroupEntry { binding, resource: texture }).chain(
+                        sampler.map(|resource| wgpu::BindGroupEntry { binding: binding + 1, resource }),
+                    )
                 })
                 .collect();
             let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -157,14 +155,20 @@ impl Gpu {
         let textures = (!draw.textures.is_empty()).then(|| {
             let mut entries = Vec::new();
             for (k, t) in draw.textures.iter().enumerate() {
-                let texture = wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                let texture = |filterable| wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable },
                     view_dimension: texture::view_dimension(t.dimension),
                     multisampled: false,
                 };
-                let sampler = wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering);
-                for (binding, ty) in [(2 * k as u32, texture), (2 * k as u32 + 1, sampler)] {
+                let mut add = |binding, ty| {
                     entries.push(wgpu::BindGroupLayoutEntry { binding, visibility: both, ty, count: None });
+                };
+                if draw.samplers {
+                    add(2 * k as u32, texture(true));
+                    add(2 * k as u32 + 1, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering));
+                } else {
+                    // Patina's modules fetch with `textureLoad`: no sampler, no filtering needed.
+                    add(k as u32, texture(false));
                 }
             }
             self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

@@ -55,8 +55,8 @@ pub enum Blend {
 /// One draw call: a shader module, its resources, and a triangle list.
 ///
 /// Bindings: `@group(0) @binding(0)` is the uniform buffer (when `uniforms` is not empty), visible to
-/// both stages; in `@group(1)`, texture `k` is at binding `2k` and its filtering sampler at `2k + 1`,
-/// also visible to both stages.
+/// both stages; in `@group(1)`, texture `k` is at binding `k` (Patina's modules, which fetch with
+/// `textureLoad`), or at `2k` with its filtering sampler at `2k + 1` when `samplers` is set.
 #[derive(Debug, Clone, Copy)]
 pub struct Draw<'a> {
     /// A module with (at least) the vertex and fragment entry points named below.
@@ -74,6 +74,8 @@ pub struct Draw<'a> {
     pub uniforms: &'a [u8],
     /// Textures of group 1, in binding order.
     pub textures: &'a [TextureData],
+    /// Whether each texture has a sampler bound beside it (see the type's documentation).
+    pub samplers: bool,
     /// Vertex attributes, each in its own vertex buffer; all must have the same vertex count.
     pub attributes: &'a [Attribute],
     /// Triangle list indices into the attributes' vertices.

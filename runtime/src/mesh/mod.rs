@@ -23,6 +23,7 @@ mod teapot_data;
 pub use teapot::TEAPOT_MAX_SUBDIVISIONS;
 
 use glam::{Mat3, Mat4, Vec3};
+use patina_compiler::backend::wgsl::interface::MeshAttribute;
 use std::fmt;
 use std::path::PathBuf;
 
@@ -77,6 +78,17 @@ pub(crate) struct SurfacePoint {
 }
 
 impl Mesh {
+    /// A mesh property as the vertex stage reads it: vertex-major f32 components.
+    pub fn attribute(&self, what: MeshAttribute) -> Vec<f32> {
+        match what {
+            MeshAttribute::Normal => self.normals.iter().flatten().copied().collect(),
+            MeshAttribute::Uv => self.uvs.iter().flatten().copied().collect(),
+            MeshAttribute::DpDu => self.dpdu.iter().flatten().copied().collect(),
+            MeshAttribute::DpDv => self.dpdv.iter().flatten().copied().collect(),
+            _ => self.positions.iter().flatten().copied().collect(),
+        }
+    }
+
     /// The number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.positions.len()

@@ -5,6 +5,7 @@
 
 use glam::Vec3;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, POINT_INDEX};
+use patina_compiler::backend::wgsl::interface::Output;
 use patina_compiler::split::StageKind;
 
 use super::frame::{Frame, VertexGeometry};
@@ -196,10 +197,10 @@ fn fragment_stage(
             e
         })
         .collect();
-    let output = surface.gpu.interface.output.clone();
+    let output = surface.gpu.interface.output;
     let carried = &vertices.carried;
     let shade = |frags: &Fragments, colors: &mut [[f32; 4]]| -> Result<(), RenderError> {
-        shade_batch(frags, colors, carried, &mut fragment, &mut lights, prepared, surface, frame, &output)?;
+        shade_batch(frags, colors, carried, &mut fragment, &mut lights, prepared, surface, frame, output)?;
         progress.advance(frags.count as u64);
         Ok(())
     };
@@ -233,7 +234,7 @@ fn shade_batch(
     prepared: &Prepared,
     surface: &SurfaceProgram,
     frame: &Frame,
-    output: &str,
+    output: Output,
 ) -> Result<(), RenderError> {
     let n = frags.count;
     let stanford = surface.stages.fragment.stanford;
@@ -388,14 +389,14 @@ fn shade_batch(
         .map(|(name, c)| (name.as_str(), c.as_slice()))
         .collect();
     let wanted: Vec<&str> = match output {
-        "result" => vec!["result"],
-        "Ci, Oi" => vec!["Ci", "Oi"],
+        Output::Result => vec!["result"],
+        Output::CiOi => vec!["Ci", "Oi"],
         _ => vec!["Ci"],
     };
     let outs = fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
     for (k, color) in colors.iter_mut().enumerate() {
         *color = match output {
-            "result" => {
+            Output::Result => {
                 let r = &outs[0][k * 4..k * 4 + 4];
                 [r[0] as f32, r[1] as f32, r[2] as f32, r[3] as f32]
             }

@@ -9,6 +9,7 @@ use patina_compiler::backend::wgsl::interface::{GeometryMatrix, Interface, Unifo
 
 use super::RenderError;
 use super::program::{LightProgram, SurfaceProgram, apply};
+use crate::camera::Camera;
 use crate::mesh::Mesh;
 
 /// The transformations of one object in one frame.
@@ -30,6 +31,35 @@ pub struct Frame {
     pub opacity: [f32; 3],
     /// The camera's near and far clipping distances (what `depth` normalizes by).
     pub clip: [f32; 2],
+}
+
+impl Frame {
+    /// The frame of an object placed by `object_to_world`, seen by `camera` in a `width × height`
+    /// image, with `Cs` and `Os` as given.
+    pub fn new(
+        camera: &Camera,
+        object_to_world: Mat4,
+        width: u32,
+        height: u32,
+        color: [f32; 3],
+        opacity: [f32; 3],
+    ) -> Frame {
+        let world_to_camera = camera.world_to_camera();
+        let object_to_camera = world_to_camera * object_to_world;
+        let spaces = super::program::spaces(world_to_camera, object_to_world, camera, width, height);
+        let world_spaces = super::program::spaces(world_to_camera, Mat4::IDENTITY, camera, width, height);
+        let (near, far) = camera.clip_range();
+        Frame {
+            object_to_camera,
+            normal_to_camera: object_to_camera.inverse().transpose(),
+            camera_to_clip: camera.camera_to_clip(width as f32 / height.max(1) as f32),
+            spaces,
+            light_spaces: super::program::light_spaces(&world_spaces),
+            color,
+            opacity,
+            clip: [near, far],
+        }
+    }
 }
 
 /// The predefined variables of one vertex, in camera space (RenderMan style).
@@ -96,12 +126,23 @@ impl VertexGeometry {
     }
 }
 
+/// What the host computed for one draw, which the uniform block's fields read: every parameter
+/// value and host output of the surface, of each bound light and of the displacement shader.
+#[derive(Clone, Copy, Debug)]
+pub struct HostValues<'a> {
+    /// The surface's, by name.
+    pub surface: &'a [(String, Vec<f64>)],
+    /// Each light's, by name.
+    pub lights: &'a [&'a [(String, Vec<f64>)]],
+    /// The displacement shader's, by name (empty without one).
+    pub displacement: &'a [(String, Vec<f64>)],
+}
+
 /// The value of a uniform field's source, in the language's component order (matrices as
 /// `to_cols_array`).
 pub fn uniform_value(
     source: &UniformSource,
-    surface: &SurfaceProgram,
-    lights: &[LightProgram],
+    values: &HostValues,
     frame: &Frame,
 ) -> Result<Vec<f64>, RenderError> {
     let f64s = |v: &[f32]| v.iter().map(|x| f64::from(*x)).collect::<Vec<f64>>();
@@ -113,7 +154,7 @@ pub fn uniform_value(
         |what: String| RenderError::Compile(format!("internal error: no value for the uniform {what}"));
     Ok(match source {
         UniformSource::Param { name } | UniformSource::Host { name } => {
-            find(&surface.uniforms, name).ok_or_else(|| missing(format!("`{name}`")))?
+            find(values.surface, name).ok_or_else(|| missing(format!("`{name}`")))?
         }
         UniformSource::Global { name } => {
             global_value(frame, name).ok_or_else(|| missing(format!("predefined variable `{name}`")))?
@@ -123,22 +164,21 @@ pub fn uniform_value(
             let m = spaces.iter().find(|(n, _)| n == name).map_or(Mat4::IDENTITY, |(_, m)| *m);
             matrix(if *inverse { m.inverse() } else { m })
         }
-        UniformSource::LightParam { light, name } => {
-            lights
-                .get(*light)
-                .and_then(|l| find(&l.values, name))
-                .ok_or_else(|| missing(format!("light {light} `{name}`")))?
+        UniformSource::LightParam { light, name } => values
+            .lights
+            .get(*light)
+            .and_then(|l| find(l, name))
+            .ok_or_else(|| missing(format!("light {light} `{name}`")))?,
+        UniformSource::DisplacementParam { name } => {
+            find(values.displacement, name).ok_or_else(|| missing(format!("displacement `{name}`")))?
         }
-        UniformSource::DisplacementParam { name } => surface
-            .displacement
-            .as_ref()
-            .and_then(|d| find(&d.values, name))
-            .ok_or_else(|| missing(format!("displacement `{name}`")))?,
         UniformSource::Geometry { matrix: which } => matrix(match which {
             GeometryMatrix::ObjectToCamera => frame.object_to_camera,
             GeometryMatrix::NormalToCamera => frame.normal_to_camera,
             GeometryMatrix::CameraToClip => frame.camera_to_clip,
+            other => return Err(missing(format!("geometry matrix {other:?}"))),
         }),
+        other => return Err(missing(format!("{other:?}"))),
     })
 }
 
@@ -170,36 +210,28 @@ pub fn global_value(frame: &Frame, name: &str) -> Option<Vec<f64>> {
 /// The uniform block's bytes, laid out as the interface says.
 pub fn uniform_bytes(
     interface: &Interface,
-    surface: &SurfaceProgram,
-    lights: &[LightProgram],
+    values: &HostValues,
     frame: &Frame,
 ) -> Result<Vec<u8>, RenderError> {
     let mut bytes = vec![0u8; interface.uniform_size as usize];
     for field in &interface.uniforms {
-        let values = uniform_value(&field.source, surface, lights, frame)?;
-        let l = &field.layout;
-        let per = l.components as usize;
-        for e in 0..l.elements as usize {
-            for c in 0..per {
-                let Some(x) = values.get(e * per + c) else { continue };
-                // A 3x3 matrix is three 16-byte columns, each holding one row of the language's.
-                let within = if l.column_stride > 0 {
-                    (c / 3) as u32 * l.column_stride + (c % 3) as u32 * 4
-                } else {
-                    c as u32 * 4
-                };
-                let at = (field.offset + e as u32 * l.element_stride + within) as usize;
-                // Integers arrive as values or as their unsigned bit patterns (the interpreter's
-                // outputs): both wrap to the same 32 bits.
-                let word: [u8; 4] = match l.scalar {
-                    "i32" | "u32" => (*x as i64 as u32).to_le_bytes(),
-                    _ => (*x as f32).to_le_bytes(),
-                };
-                if let Some(slot) = bytes.get_mut(at..at + 4) {
-                    slot.copy_from_slice(&word);
-                }
-            }
-        }
+        field.write(&mut bytes, &uniform_value(&field.source, values, frame)?);
     }
     Ok(bytes)
+}
+
+/// The uniform block's bytes for a compiled surface and its lights, from the values their host
+/// programs last computed.
+pub fn program_uniform_bytes(
+    surface: &SurfaceProgram,
+    lights: &[LightProgram],
+    frame: &Frame,
+) -> Result<Vec<u8>, RenderError> {
+    let light_values: Vec<&[(String, Vec<f64>)]> = lights.iter().map(|l| l.values.as_slice()).collect();
+    let values = HostValues {
+        surface: &surface.uniforms,
+        lights: &light_values,
+        displacement: surface.displacement.as_ref().map_or(&[], |d| d.values.as_slice()),
+    };
+    uniform_bytes(&surface.gpu.interface, &values, frame)
 }

@@ -1,9 +1,10 @@
 //! Drawing a prepared scene with wgpu.
 
-use super::frame::uniform_bytes;
+use super::frame::program_uniform_bytes;
 use super::{Prepared, RenderError};
 use crate::gpu::{Attribute, Blend, Draw, Gpu, Target, TargetFormat};
 use crate::image::Image;
+use patina_compiler::backend::wgsl::interface::AttributeSource;
 
 /// Renders every object of a prepared scene on the GPU into an rgba32float image of
 /// `width × height` (the caller downsamples supersampled renders).
@@ -11,21 +12,17 @@ pub fn render(gpu: &Gpu, prepared: &Prepared, width: u32, height: u32) -> Result
     let mut owned = Vec::new();
     for object in &prepared.objects {
         let interface = &object.surface.gpu.interface;
-        let uniforms = uniform_bytes(interface, &object.surface, &prepared.lights, &object.frame)?;
+        let uniforms = program_uniform_bytes(&object.surface, &prepared.lights, &object.frame)?;
         let mesh = &object.mesh;
         let mut attributes = Vec::new();
         for a in &interface.attributes {
-            // Locations 0 to 4 are the mesh's geometry; the rest are vertex-rate parameters.
-            let data: Vec<f32> = match (a.location, a.name.as_str()) {
-                (0, _) => mesh.positions.iter().flatten().copied().collect(),
-                (1, _) => mesh.normals.iter().flatten().copied().collect(),
-                (2, _) => mesh.uvs.iter().flatten().copied().collect(),
-                (3, _) => mesh.dpdu.iter().flatten().copied().collect(),
-                (4, _) => mesh.dpdv.iter().flatten().copied().collect(),
-                (_, param) => (0..mesh.positions.len())
-                    .flat_map(|i| object.vertex_param(param, i, a.components as usize))
+            let data: Vec<f32> = match &a.source {
+                AttributeSource::Mesh { what } => mesh.attribute(*what),
+                AttributeSource::Param { name } => (0..mesh.positions.len())
+                    .flat_map(|i| object.vertex_param(name, i, a.components as usize))
                     .map(|x| x as f32)
                     .collect(),
+                _ => return Err(RenderError::Compile(format!("unknown attribute `{}`", a.name))),
             };
             attributes.push(Attribute { location: a.location, components: a.components, data });
         }
@@ -53,6 +50,7 @@ pub fn render(gpu: &Gpu, prepared: &Prepared, width: u32, height: u32) -> Result
             fragment_entry: &object.surface.gpu.interface.fragment_entry,
             uniforms,
             textures,
+            samplers: false,
             attributes,
             indices: &object.mesh.indices,
             blend: Blend::PremultipliedOver,

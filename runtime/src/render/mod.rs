@@ -4,9 +4,9 @@
 
 mod cache;
 mod cpu;
-mod frame;
+pub mod frame;
 mod gpu;
-mod program;
+pub mod program;
 mod progress;
 mod textures;
 

@@ -82,9 +82,9 @@ pub fn rebind_surface(
     surface.loaded.params = params;
     let host_outputs = host_outputs(&surface.stages);
     surface.uniforms =
-        evaluate_params(&surface.host, &surface.loaded, &frame.spaces, Some(frame), &host_outputs)?;
+        evaluate_params(&surface.host, &surface.loaded.params, &frame.spaces, Some(frame), &host_outputs)?;
     if let Some(d) = &mut surface.displacement {
-        d.values = evaluate_params(&d.cpu, &d.loaded, &frame.spaces, Some(frame), &[])?;
+        d.values = evaluate_params(&d.cpu, &d.loaded.params, &frame.spaces, Some(frame), &[])?;
     }
     Ok(surface)
 }
@@ -170,7 +170,7 @@ fn kind_name(kind: ShaderKind) -> &'static str {
 }
 
 /// Scene values of geometric types are in world space; shaders see them in camera space.
-fn to_current(ty: Type, v: Vec<f64>, world_to_camera: Mat4) -> Vec<f64> {
+pub fn to_current(ty: Type, v: Vec<f64>, world_to_camera: Mat4) -> Vec<f64> {
     if ty.is_array() || v.len() != 3 {
         return v;
     }
@@ -231,7 +231,7 @@ pub struct SurfaceProgram {
 pub fn light_program(loaded: LoadedShader, spaces: &[(String, Mat4)]) -> Result<LightProgram, RenderError> {
     let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
     let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
-    let values = evaluate_params(&cpu, &loaded, spaces, None, &[])?;
+    let values = evaluate_params(&cpu, &loaded.params, spaces, None, &[])?;
     Ok(LightProgram { loaded, cpu, values })
 }
 
@@ -265,7 +265,7 @@ pub fn surface_program(
             let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
             let cpu =
                 CpuProgram::compile(&d.shader, &binding).map_err(|e| RenderError::Compile(e.message))?;
-            let values = evaluate_params(&cpu, &d, spaces, Some(frame), &[])?;
+            let values = evaluate_params(&cpu, &d.params, spaces, Some(frame), &[])?;
             Some(DisplacementProgram { loaded: d, cpu, values })
         }
         None => None,
@@ -283,21 +283,21 @@ pub fn surface_program(
     let vertex = compile(&stages.vertex)?;
     let fragment = compile(&stages.fragment)?;
     let host_outputs = host_outputs(&stages);
-    let uniforms = evaluate_params(&host, &loaded, spaces, Some(frame), &host_outputs)?;
+    let uniforms = evaluate_params(&host, &loaded.params, spaces, Some(frame), &host_outputs)?;
     Ok(SurfaceProgram { loaded, stages, gpu, host, vertex, fragment, uniforms, displacement })
 }
 
 /// The values the host part hands to the other stages, by name.
-fn host_outputs(stages: &Stages) -> Vec<String> {
+pub fn host_outputs(stages: &Stages) -> Vec<String> {
     stages.transfers.iter().filter(|t| t.from == split::StageKind::Host).map(|t| t.name.to_string()).collect()
 }
 
 /// Runs a program once with the scene's parameter values (and, for an object's programs, its
 /// frame's uniform predefined variables) and reads back every parameter (the scene's value or its
 /// default) and the named extra outputs.
-fn evaluate_params(
+pub fn evaluate_params(
     program: &CpuProgram,
-    loaded: &LoadedShader,
+    params: &[(String, Vec<f64>)],
     spaces: &[(String, Mat4)],
     frame: Option<&Frame>,
     extra: &[String],
@@ -309,7 +309,7 @@ fn evaluate_params(
     if let Some(frame) = frame {
         set_globals(&mut eval, program, frame);
     }
-    for (name, value) in &loaded.params {
+    for (name, value) in params {
         eval.set(name, value).map_err(|e| RenderError::Input(format!("parameter `{name}`: {e}")))?;
     }
     let mut names: Vec<String> = program

@@ -21,6 +21,7 @@ pub mod interface;
 mod kernel;
 mod matrices;
 mod module;
+mod params;
 mod strings;
 mod tables;
 mod textures;
@@ -36,7 +37,7 @@ use crate::split::Stages;
 use body::Translator;
 pub use body::{MAX_LIGHTS, MAX_LOOP_ITERATIONS};
 pub use entry::RANDOM_ROW;
-use interface::Interface;
+use interface::{INTERFACE_VERSION, Interface, Output, UniformSource};
 pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel};
 use module::ModuleBuilder;
 
@@ -182,6 +183,7 @@ pub fn compile_object(
     let (uniforms, uniform_size) = mb
         .finish_uniforms()
         .map_err(|e| internal(stages.fragment.span, format!("internal error: uniform layout: {e}")))?;
+    let mb_uniform_var = mb.uniform_var;
     let module = mb.module;
     let info =
         naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
@@ -193,24 +195,59 @@ pub fn compile_object(
                 )
             })?;
     let output = if stages.fragment.result_local.is_some() {
-        "result"
+        Output::Result
     } else if uses::Uses::of(&stages.fragment, &stages.fragment.body).written.contains("Oi") {
-        "Ci, Oi"
+        Output::CiOi
     } else {
-        "Ci"
+        Output::Ci
     };
-    let interface = Interface {
+    let mut interface = Interface {
+        version: INTERFACE_VERSION,
+        shader: stages.fragment.name.to_string(),
         vertex_entry: "vs_main".into(),
         fragment_entry: "fs_main".into(),
+        uniform_struct: "Uniforms".into(),
+        needs_host: uniforms.iter().any(|u| matches!(u.source, UniformSource::Host { .. })),
         uniforms,
         uniform_size,
+        params: params::parameters(stages, strings),
         attributes,
         varyings,
         textures,
-        output: output.into(),
+        output,
     };
+    wgsl_names(&module, mb_uniform_var, &mut interface);
     let fingerprint = module_fingerprint(&module);
     Ok(GpuProgram { module, info, interface, fingerprint })
+}
+
+/// Renames the interface's uniform members and its struct as naga's WGSL writer spells them (it
+/// renames identifiers that end in a digit or collide with a keyword), so the interface's names
+/// are the WGSL text's.
+fn wgsl_names(
+    module: &naga::Module,
+    uniform_var: naga::Handle<naga::GlobalVariable>,
+    interface: &mut Interface,
+) {
+    use naga::proc::{NameKey, Namer};
+    let mut names = naga::FastHashMap::default();
+    Namer::default().reset(
+        module,
+        &naga::keywords::wgsl::RESERVED_SET,
+        &naga::keywords::wgsl::BUILTIN_IDENTIFIER_SET,
+        naga::proc::CaseInsensitiveKeywordSet::empty(),
+        &["__", "_naga"],
+        &mut names,
+    );
+    let ty = module.global_variables[uniform_var].ty;
+    if let Some(name) = names.get(&NameKey::Type(ty)) {
+        interface.uniform_struct = name.clone();
+    }
+    for (i, field) in interface.uniforms.iter_mut().enumerate() {
+        if let Some(name) = names.get(&NameKey::StructMember(ty, i as u32)) {
+            field.name = name.clone();
+        }
+    }
 }
 
 /// An error's message with its causes.

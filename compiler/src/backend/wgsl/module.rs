@@ -8,7 +8,7 @@ use naga::{
 };
 use rustc_hash::FxHashMap;
 
-use super::interface::{FieldLayout, UniformField, UniformSource};
+use super::interface::{FieldLayout, ScalarKind, UniformField, UniformSource};
 use crate::ir::types::{Base, Type};
 
 /// The module and what has been added to it.
@@ -268,9 +268,9 @@ fn field_layout(t: Type) -> FieldLayout {
         element_stride,
         column_stride: if t.base == Base::Matrix3 { 16 } else { 0 },
         scalar: match t.base {
-            Base::Int => "i32",
-            Base::Uint | Base::Bool => "u32",
-            _ => "f32",
+            Base::Int => ScalarKind::I32,
+            Base::Uint | Base::Bool => ScalarKind::U32,
+            _ => ScalarKind::F32,
         },
     }
 }

@@ -1,7 +1,7 @@
 //! Texel fetches for the shared texture filter of `opt::textures`: `__texel2d`, `__texel3d` and
 //! `__texsize2d`/`__texsize3d` as `textureLoad` and `textureDimensions`. Each texture the program reads is a
-//! `texture_2d<f32>` or `texture_3d<f32>` at group 1, binding 2k (its sampler's binding, 2k + 1,
-//! is left to the runtime's layout: the fetches use none).
+//! `texture_2d<f32>` or `texture_3d<f32>` at group 1, binding k, with no sampler (the fetches
+//! use none, so the texture need not be filterable).
 
 use naga::{
     AddressSpace, Expression, GlobalVariable, ImageClass, ImageDimension, ImageQuery, Literal,
@@ -85,7 +85,7 @@ impl Translator<'_> {
                     arrayed: false,
                     class: ImageClass::Sampled { kind: ScalarKind::Float, multi: false },
                 });
-                let binding = 2 * self.mb.texture_count();
+                let binding = self.mb.texture_count();
                 let name = format!("tex_{}", super::module::sanitize(key));
                 let v = self.mb.module.global_variables.append(
                     GlobalVariable {

@@ -9,7 +9,7 @@ mod vertex;
 use naga::{Binding, Expression, Handle, Interpolation, Sampling, StructMember};
 
 use super::body::{Translator, Value};
-use super::interface::{Attribute, UniformSource, Varying};
+use super::interface::{Attribute, AttributeSource, MeshAttribute, UniformSource, Varying};
 use super::module::{ModuleBuilder, sanitize};
 use super::uses::Uses;
 use crate::ir::types::{Base, Frequency, Type};
@@ -37,9 +37,29 @@ pub(crate) const SCREEN_POSITION: &str = "xyz_screen";
 /// is point x + 4096 y (below 2^24, so the interpreter's f32 inputs carry it exactly).
 pub const RANDOM_ROW: u32 = 4096;
 
-/// The mesh attributes every vertex stage takes, at locations 0 to 4.
-pub(crate) const GEOMETRY_ATTRIBUTES: [(&str, u32); 5] =
-    [("P", 3), ("N", 3), ("uv", 2), ("dPdu", 3), ("dPdv", 3)];
+/// Whether the vertex entry point must set the predefined variable `name`: a stage reads it or
+/// a varying carries its value on entry.
+pub(crate) fn geometry_needed(name: &str, vertex: &Uses, fragment: &Uses, crossings: &[Crossing]) -> bool {
+    vertex.has_global(name)
+        || fragment.has_global(name)
+        || crossings.iter().any(|c| matches!(c.what, Carried::Global(g) if g.name == name))
+}
+
+/// The mesh properties the vertex entry point reads to set the predefined variables `needed`
+/// says it must (the position always: it places the vertex).
+pub(crate) fn mesh_attributes_read(needed: impl Fn(&str) -> bool, stanford: bool) -> Vec<MeshAttribute> {
+    let any = |names: &[&str]| names.iter().any(|n| needed(n));
+    let (normal, uv, dpdu, dpdv) = if stanford {
+        (any(&["N", "B", "__normal", "__objnormal"]), false, any(&["T", "B"]), false)
+    } else {
+        (any(&["N", "Ng"]), any(&["u", "v", "s", "t"]), any(&["dPdu"]), any(&["dPdv"]))
+    };
+    MeshAttribute::ALL
+        .into_iter()
+        .zip([true, normal, uv, dpdu, dpdv])
+        .filter_map(|(a, read)| read.then_some(a))
+        .collect()
+}
 
 /// A value that crosses from the vertex to the fragment stage.
 pub(crate) struct Crossing {
@@ -126,11 +146,17 @@ pub(crate) fn entry_points(
         crossings.push(Crossing { name: t.name.to_string(), ty: t.ty, what: Carried::Transfer(t.local) });
     }
 
-    // Vertex attributes: the geometry, then vertex-rate parameters.
-    let mut attributes: Vec<Attribute> = GEOMETRY_ATTRIBUTES
-        .iter()
-        .enumerate()
-        .map(|(i, (n, c))| Attribute { name: n.to_string(), location: i as u32, components: *c })
+    // Vertex attributes: the mesh properties read (each at its own location), then vertex-rate
+    // parameters from the first location after them.
+    let needed = |name: &str| geometry_needed(name, &vertex_uses, &fragment_uses, &crossings);
+    let mut attributes: Vec<Attribute> = mesh_attributes_read(needed, surface.stanford)
+        .into_iter()
+        .map(|what| Attribute {
+            name: format!("a_{}", what.name()),
+            source: AttributeSource::Mesh { what },
+            location: what.location(),
+            components: what.components(),
+        })
         .collect();
     let vertex_params: Vec<crate::ir::LocalId> = surface
         .params
@@ -144,11 +170,13 @@ pub(crate) fn entry_points(
                 && (vertex_uses.locals.contains(l) || fragment_uses.locals.contains(l))
         })
         .collect();
-    for l in &vertex_params {
+    for (k, l) in vertex_params.iter().enumerate() {
         let local = surface.local(*l);
         attributes.push(Attribute {
-            name: local.name.to_string(),
-            location: attributes.len() as u32,
+            // `p_` keeps a parameter's argument apart from a mesh property of the same name.
+            name: format!("p_{}", sanitize(&local.name)),
+            source: AttributeSource::Param { name: local.name.to_string() },
+            location: MeshAttribute::ALL.len() as u32 + k as u32,
             components: local.ty.base.components(),
         });
     }

@@ -8,14 +8,16 @@ use naga::{
 
 use crate::backend::wgsl::body::{Translator, Value};
 use crate::backend::wgsl::func::FnBuilder;
-use crate::backend::wgsl::interface::{Attribute, GeometryMatrix, UniformSource, Varying};
-use crate::backend::wgsl::module::{ModuleBuilder, sanitize};
+use crate::backend::wgsl::interface::{
+    Attribute, AttributeSource, GeometryMatrix, MeshAttribute, UniformSource, Varying,
+};
+use crate::backend::wgsl::module::ModuleBuilder;
 use crate::backend::wgsl::uses::Uses;
 use crate::ir::types::{Base, Type};
 use crate::split::{StageKind, Stages};
 
 use super::{
-    Carried, Crossing, GEOMETRY_ATTRIBUTES, init_uniform_inputs, lay_out, location, plain, varying_type,
+    Carried, Crossing, geometry_needed, init_uniform_inputs, lay_out, location, plain, varying_type,
 };
 
 #[allow(clippy::too_many_arguments)]
@@ -49,23 +51,19 @@ pub(super) fn vertex_entry(
             ty
         };
         t.fb.f.arguments.push(FunctionArgument {
-            name: Some(format!("a_{}", sanitize(&a.name))),
+            name: Some(a.name.clone()),
             ty,
             binding: Some(plain(a.location)),
         });
         args.push(t.fb.add(Expression::FunctionArgument(args.len() as u32)));
     }
+    let mesh = |what: MeshAttribute| {
+        attributes.iter().position(|a| a.source == AttributeSource::Mesh { what }).map(|i| args[i])
+    };
 
-    // The geometry: predefined variables the stages read, in camera ("current") space.
-    let oc = t.uniform_value(
-        "object_to_camera",
-        Type::of(Base::Matrix4),
-        UniformSource::Geometry { matrix: GeometryMatrix::ObjectToCamera },
-    );
-    let p_cam = t.transform_by(oc, args[0], 1.0);
-    let carried =
-        |name: &str| crossings.iter().any(|c| matches!(c.what, Carried::Global(g) if g.name == name));
-    let needed = |name: &str| uses.has_global(name) || fragment_uses.has_global(name) || carried(name);
+    // The geometry: predefined variables the stages read, in camera ("current") space, from the
+    // mesh properties `mesh_attributes_read` chose (the position is always read).
+    let needed = |name: &str| geometry_needed(name, uses, fragment_uses, crossings);
     let stanford = shader.stanford;
     let set = |t: &mut Translator, name: &str, value: Value| {
         if let Some(g) = crate::sema::globals::lookup(name, shader.kind, stanford) {
@@ -74,68 +72,79 @@ pub(super) fn vertex_entry(
             t.store(p, value);
         }
     };
-    let nc = t.uniform_value(
-        "normal_to_camera",
+    let oc = t.uniform_value(
+        "object_to_camera",
         Type::of(Base::Matrix4),
-        UniformSource::Geometry { matrix: GeometryMatrix::NormalToCamera },
+        UniformSource::Geometry { matrix: GeometryMatrix::ObjectToCamera },
     );
-    let n_cam = t.transform_by(nc, args[1], 0.0);
-    let u = t.fb.add(Expression::AccessIndex { base: args[2], index: 0 });
-    let v = t.fb.add(Expression::AccessIndex { base: args[2], index: 1 });
-    let dpdu = t.transform_by(oc, args[3], 0.0);
-    let dpdv = t.transform_by(oc, args[4], 0.0);
+    let position = mesh(MeshAttribute::Position).expect("the position is always read");
+    let p_cam = t.transform_by(oc, position, 1.0);
+    let n_cam = mesh(MeshAttribute::Normal).map(|n| {
+        let nc = t.uniform_value(
+            "normal_to_camera",
+            Type::of(Base::Matrix4),
+            UniformSource::Geometry { matrix: GeometryMatrix::NormalToCamera },
+        );
+        t.transform_by(nc, n, 0.0)
+    });
+    let uv = mesh(MeshAttribute::Uv).map(|uv| {
+        let u = t.fb.add(Expression::AccessIndex { base: uv, index: 0 });
+        let v = t.fb.add(Expression::AccessIndex { base: uv, index: 1 });
+        (u, v)
+    });
+    let dpdu = mesh(MeshAttribute::DpDu).map(|d| t.transform_by(oc, d, 0.0));
+    let dpdv = mesh(MeshAttribute::DpDv).map(|d| t.transform_by(oc, d, 0.0));
+    let mut values: Vec<(&str, Value)> = Vec::new();
     if stanford {
         let one = t.float(1.0);
         let f4 = t.mb.ty(Type::of(Base::Float4), false);
         let p4 = t.fb.add(Expression::Compose { ty: f4, components: vec![p_cam, one] });
-        let pobj = t.fb.add(Expression::Compose { ty: f4, components: vec![args[0], one] });
-        let n = t.normalize(n_cam);
-        let tangent = t.normalize(dpdu);
-        let b = t.math2(naga::MathFunction::Cross, n, tangent);
+        let pobj = t.fb.add(Expression::Compose { ty: f4, components: vec![position, one] });
         let minus_p = t.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: p_cam });
         let e = t.normalize(minus_p);
-        for (name, value) in [
-            ("P", p4),
-            ("Pobj", pobj),
-            ("N", n),
-            ("T", tangent),
-            ("B", b),
-            ("E", e),
-            ("__position", pobj),
-            ("__normal", args[1]),
-            ("__objnormal", args[1]),
-        ] {
-            if needed(name) {
-                set(&mut t, name, value);
-            }
+        values.extend([("P", p4), ("Pobj", pobj), ("E", e), ("__position", pobj)]);
+        let n = n_cam.map(|n| t.normalize(n));
+        let tangent = dpdu.map(|d| t.normalize(d));
+        if let (Some(n), Some(tangent)) = (n, tangent) {
+            let b = t.math2(naga::MathFunction::Cross, n, tangent);
+            values.push(("B", b));
+        }
+        if let Some(n) = n {
+            values.push(("N", n));
+        }
+        if let Some(tangent) = tangent {
+            values.push(("T", tangent));
+        }
+        if let Some(n_obj) = mesh(MeshAttribute::Normal) {
+            values.extend([("__normal", n_obj), ("__objnormal", n_obj)]);
         }
     } else {
         let zero = t.float(0.0);
         let origin = t.splat(zero, 3);
-        for (name, value) in [
-            ("P", p_cam),
-            ("N", n_cam),
-            ("Ng", n_cam),
-            ("I", p_cam),
-            ("E", origin),
-            ("u", u),
-            ("v", v),
-            ("s", u),
-            ("t", v),
-            ("dPdu", dpdu),
-            ("dPdv", dpdv),
-            ("dPdtime", origin),
-        ] {
-            if needed(name) {
-                set(&mut t, name, value);
-            }
+        values.extend([("P", p_cam), ("I", p_cam), ("E", origin), ("dPdtime", origin)]);
+        if let Some(n) = n_cam {
+            values.extend([("N", n), ("Ng", n)]);
+        }
+        if let Some((u, v)) = uv {
+            values.extend([("u", u), ("v", v), ("s", u), ("t", v)]);
+        }
+        if let Some(d) = dpdu {
+            values.push(("dPdu", d));
+        }
+        if let Some(d) = dpdv {
+            values.push(("dPdv", d));
+        }
+    }
+    for (name, value) in values {
+        if needed(name) {
+            set(&mut t, name, value);
         }
     }
     init_uniform_inputs(&mut t, shader, uses, StageKind::Vertex, stages);
     for (k, l) in vertex_params.iter().enumerate() {
         let var = t.local_var(*l);
         let p = t.pointer(var);
-        let value = args[GEOMETRY_ATTRIBUTES.len() + k];
+        let value = args[attributes.len() - vertex_params.len() + k];
         t.store(p, value);
     }
 

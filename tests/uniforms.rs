@@ -1,0 +1,172 @@
+//! `Uniforms` packs every parameter of every example scene into the bytes the renderer writes:
+//! each scene's objects are compiled through the facade with nothing fixed, every value the scene
+//! gives is set by name (`set`, `set_light`, `set_displacement`), and the block must equal, byte
+//! for byte, what `patina render` binds for the same scene compiled dynamic.
+
+use std::path::Path;
+
+use patina::runtime::render::{self, Options, frame::program_uniform_bytes};
+use patina::runtime::scene::{ParamValue, Scene, ShaderRef};
+use patina::{Compiler, Light, Uniforms, Value, View};
+
+/// A scene's value as the facade takes it.
+fn value(v: &ParamValue) -> Value {
+    match v {
+        ParamValue::Number(x) => Value::from(*x),
+        ParamValue::Numbers(v) => Value::from(v.clone()),
+        ParamValue::String(s) => Value::from(s.as_str()),
+        ParamValue::Bool(b) => Value::from(*b),
+    }
+}
+
+/// The facade's light (or displacement) for a scene's shader, with its strings compiled in.
+fn bound(shader: &ShaderRef) -> Light {
+    let shown = shader.path.display().to_string();
+    let mut light = match shown.strip_prefix(patina::compiler::stdlib::PREFIX) {
+        Some(module) => {
+            Light::stdlib(module.trim_start_matches('/'), shader.name.as_deref().unwrap_or_default())
+        }
+        None => Light::file(&shader.path),
+    };
+    if let Some(name) = &shader.name {
+        light = light.named(name);
+    }
+    for (name, v) in &shader.params {
+        if let ParamValue::String(_) = v {
+            light = light.with(name, value(v));
+        }
+    }
+    light
+}
+
+/// Sets every numeric value of `shader` through `set`.
+fn set_all(shader: &ShaderRef, mut set: impl FnMut(&str, Value) -> Result<(), patina::UniformError>) {
+    for (name, v) in &shader.params {
+        if !matches!(v, ParamValue::String(_)) {
+            set(name, value(v)).unwrap_or_else(|e| panic!("{}: `{name}`: {e}", shader.path.display()));
+        }
+    }
+}
+
+fn check_scene(path: &Path) -> usize {
+    let scene = Scene::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let prepared = render::prepare_with(&scene, Options { specialize: false })
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut compared = 0;
+    for (i, (object, drawn)) in scene.objects.iter().zip(&prepared.objects).enumerate() {
+        let mut compiler = Compiler::new();
+        for light in &scene.lights {
+            compiler = compiler.light(bound(&light.shader));
+        }
+        if let Some(d) = &object.displacement {
+            compiler = compiler.displacement(bound(d));
+        }
+        let surface = &object.surface;
+        for (name, v) in &surface.params {
+            if let ParamValue::String(_) = v {
+                compiler = compiler.fix(name, value(v));
+            }
+        }
+        if let Some(name) = &surface.name {
+            compiler = compiler.shader(name);
+        }
+        let shown = surface.path.display().to_string();
+        let compiled = match shown.strip_prefix(patina::compiler::stdlib::PREFIX) {
+            Some(module) => {
+                let text =
+                    patina::compiler::stdlib::source(module.trim_start_matches('/')).expect("stdlib module");
+                compiler.compile_source(&shown, text)
+            }
+            None => compiler.compile_file(&surface.path),
+        }
+        .unwrap_or_else(|e| panic!("{}: object {i}: {e}", path.display()));
+        assert_eq!(compiled.interface, drawn.surface.gpu.interface, "{}: object {i}", path.display());
+
+        let mut block: Uniforms = compiled.uniforms();
+        set_all(surface, |n, v| block.set(n, v).map(|_| ()));
+        for (k, light) in scene.lights.iter().enumerate() {
+            set_all(&light.shader, |n, v| block.set_light(k, n, v).map(|_| ()));
+        }
+        if let Some(d) = &object.displacement {
+            set_all(d, |n, v| block.set_displacement(n, v).map(|_| ()));
+        }
+        let n = scene.output.supersample.max(1);
+        block.set_view(View {
+            camera: scene.camera(),
+            object_to_world: scene.object_transform(i),
+            width: scene.output.width * n,
+            height: scene.output.height * n,
+            color: object.color,
+            opacity: object.opacity,
+        });
+        let bytes = block.bytes().unwrap_or_else(|e| panic!("{}: object {i}: {e}", path.display()));
+        let expected =
+            program_uniform_bytes(&drawn.surface, &prepared.lights, &drawn.frame).expect("renderer's bytes");
+        for field in &compiled.interface.uniforms {
+            assert_eq!(
+                field.read(&bytes),
+                field.read(&expected),
+                "{}: object {i}: uniform `{}` ({:?})",
+                path.display(),
+                field.name,
+                field.source
+            );
+        }
+        assert_eq!(bytes, expected, "{}: object {i}: padding", path.display());
+        compared += 1;
+    }
+    compared
+}
+
+#[test]
+fn uniforms_match_the_renderer_for_every_example_scene() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut scenes: Vec<_> = std::fs::read_dir(root.join("examples/scenes"))
+        .expect("examples/scenes")
+        .chain(std::fs::read_dir(root.join("examples/scenes/bench")).expect("examples/scenes/bench"))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    scenes.push(root.join("examples/headless.toml"));
+    scenes.sort();
+    let objects: usize = scenes.iter().map(|s| check_scene(s)).sum();
+    assert!(scenes.len() > 20 && objects >= scenes.len(), "{} scenes, {objects} objects", scenes.len());
+}
+
+#[test]
+fn setting_a_value_checks_name_type_and_binding() {
+    let source = "surface p(float Kd = 0.5, Ks = 0.5; color tint = 1; point at = 0) {
+        Ci = tint * (Kd + Ks) + color(at);
+    }";
+    // The host computes `tint * (Kd + Ks)` once per draw; folded, the parameters themselves are
+    // the uniforms, and no host part is needed.
+    let hosted = Compiler::new().fix("Ks", 0.25).compile_source("p.sl", source).expect("compiles");
+    assert!(hosted.interface.needs_host);
+    let compiled =
+        Compiler::new().fix("Ks", 0.25).fold_host(true).compile_source("p.sl", source).expect("compiles");
+    assert!(!compiled.interface.needs_host);
+    let mut block = compiled.uniforms();
+    assert!(matches!(block.set("Kx", 1.0), Err(patina::UniformError::Unknown { .. })));
+    assert!(matches!(block.set("tint", 1.0), Err(patina::UniformError::WrongType { .. })));
+    assert!(matches!(block.set("Kd", "a"), Err(patina::UniformError::WrongType { .. })));
+    assert!(matches!(block.set("Ks", 1.0), Err(patina::UniformError::CompiledIn { .. })));
+    block.set("Kd", 0.75).expect("Kd").set("tint", [0.5, 0.25, 1.0]).expect("tint");
+    let bytes = block.bytes().expect("bytes");
+    let read = |name: &str| {
+        let source = patina::interface::UniformSource::Param { name: name.into() };
+        block.read(&bytes, &source).unwrap_or_else(|| panic!("no uniform for {name}"))
+    };
+    assert_eq!(read("Kd"), vec![0.75]);
+    assert_eq!(read("tint"), vec![0.5, 0.25, 1.0]);
+    // Ks is compiled in: no uniform, and the interface says so.
+    assert!(
+        compiled.interface.uniform(&patina::interface::UniformSource::Param { name: "Ks".into() }).is_none()
+    );
+    assert_eq!(compiled.interface.param("Ks").and_then(|p| p.fixed.clone()), Some(vec![0.25]));
+    assert_eq!(compiled.interface.param("Kd").and_then(|p| p.default.clone()), Some(vec![0.5]));
+    // A point depends on the view and cannot be compiled in.
+    let fixed_point = Compiler::new()
+        .fix("at", [1.0, 2.0, 3.0])
+        .compile_source("p.sl", "surface p(point at = 0) { Ci = color(at); }");
+    assert!(matches!(fixed_point, Err(patina::CompileError::DependsOnView { .. })));
+}

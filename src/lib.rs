@@ -10,7 +10,7 @@
 //! use patina::{Compiler, Light};
 //!
 //! let compiled = Compiler::new()
-//!     .light(Light::stdlib("lights.sl", "pointlight"))
+//!     .light(Light::stdlib("shaders.sl", "pointlight"))
 //!     .compile_source("plastic.sl", "surface plastic(float Ka = 1, Kd = 0.5, Ks = 0.5, roughness = 0.1) {
 //!         normal Nf = faceforward(normalize(N), I);
 //!         Ci = Cs * (Ka * ambient() + Kd * diffuse(Nf)) + Ks * specular(Nf, -normalize(I), roughness);
@@ -52,7 +52,12 @@ pub use facade::{CompileError, Compiled, Compiler, Diagnostics, Light, UniformEr
 pub use patina_compiler::backend::wgsl::interface::{self, Interface};
 pub use patina_runtime::camera::Camera;
 
-#[doc(hidden)]
+/// The compiler's stages (internal: may change between versions).
 pub use patina_compiler as compiler;
-#[doc(hidden)]
+/// The renderer, scenes and the CPU reference rasterizer (internal: may change between versions).
 pub use patina_runtime as runtime;
+
+/// The README's Rust snippets, compiled as doctests so they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

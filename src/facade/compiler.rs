@@ -22,7 +22,7 @@ use crate::Interface;
 ///
 /// ```
 /// let compiled = patina::Compiler::new()
-///     .light(patina::Light::stdlib("lights.sl", "pointlight"))
+///     .light(patina::Light::stdlib("shaders.sl", "pointlight"))
 ///     .fix("roughness", 0.2)
 ///     .compile_source("matte.sl", "surface matte(float Kd = 1; float roughness = 0.1) {
 ///         Ci = Cs * Kd * diffuse(faceforward(normalize(N), I));
@@ -53,6 +53,7 @@ pub struct Light {
 #[derive(Clone, Debug)]
 enum Source {
     File(PathBuf),
+    Stdlib(String),
     Text { name: String, text: String },
 }
 
@@ -62,12 +63,10 @@ impl Light {
         Light { source: Source::File(path.into()), name: None, fixed: Vec::new() }
     }
 
-    /// A shader of a standard-library module (`lights.sl` has `pointlight`, `distantlight`,
-    /// `spotlight`, `ambientlight`, ...).
+    /// A shader of a standard-library module (`shaders.sl` has RenderMan's `pointlight`,
+    /// `distantlight`, `spotlight`, `ambientlight`, ...).
     pub fn stdlib(module: &str, shader: &str) -> Light {
-        let text = patina_compiler::stdlib::source(module).unwrap_or_default().to_string();
-        let name = format!("{}/{module}", patina_compiler::stdlib::PREFIX);
-        Light { source: Source::Text { name, text }, name: Some(shader.into()), fixed: Vec::new() }
+        Light { source: Source::Stdlib(module.into()), name: Some(shader.into()), fixed: Vec::new() }
     }
 
     /// A shader of source text, shown in diagnostics as `name`.
@@ -239,6 +238,14 @@ impl Compiler {
                     light.name.as_deref(),
                     &light.fixed,
                 )
+            }
+            Source::Stdlib(module) => {
+                let shown = format!("{}/{module}", patina_compiler::stdlib::PREFIX);
+                let text = patina_compiler::stdlib::source(module).ok_or_else(|| CompileError::Io {
+                    path: PathBuf::from(&shown),
+                    message: "no such standard-library module".into(),
+                })?;
+                self.load(&shown, text, None, kind, light.name.as_deref(), &light.fixed)
             }
             Source::Text { name, text } => {
                 self.load(name, text, None, kind, light.name.as_deref(), &light.fixed)

@@ -1,7 +1,7 @@
 //! Diagnostics: what every stage reports, and how it is shown to users.
 //!
 //! Stages build [`Diagnostic`]s with spans into the [`SourceMap`](crate::source::SourceMap); nothing
-//! here knows about any stage. [`render`] turns them into codespan-reporting's terminal layout or into
+//! here knows about any stage. `render` turns them into codespan-reporting's terminal layout or into
 //! JSON lines for tools, adding the include and macro-expansion sites of every label.
 
 mod code;

@@ -244,8 +244,8 @@ impl Rng {
 }
 
 /// The sweep's points for `args`: the nominal point; each argument over its extremes with the
-/// others nominal; every pair of point-like arguments over [`triple_pairs`] and every pair of
-/// floats over [`FLOAT_PAIRS`]; then `random` points whose every argument is, with even odds,
+/// others nominal; every pair of point-like arguments over `triple_pairs` and every pair of
+/// floats over `FLOAT_PAIRS`; then `random` points whose every argument is, with even odds,
 /// one of its extremes or nominal (seeded with `seed`).
 pub fn points(args: &[Arg], random: usize, seed: u64) -> Points {
     let nominal: Vec<Vec<f64>> = args.iter().map(|a| a.kind.nominal()).collect();

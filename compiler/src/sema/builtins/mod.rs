@@ -1,7 +1,7 @@
 //! Built-in functions: their overloads, written as signatures the way the RenderMan and Stanford
 //! specifications print them, parsed once into [`Builtin`] records.
 //!
-//! Each line of [`table::SIGNATURES`] is one overload, or a family of them:
+//! Each line of `table::SIGNATURES` is one overload, or a family of them:
 //!
 //! ```text
 //! [for T in TYPE|TYPE|...:] RET NAME(PARAM, PARAM, ...) [attr, attr]

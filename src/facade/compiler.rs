@@ -216,7 +216,21 @@ impl Compiler {
             uniforms: Vec::new(),
             displacement,
         };
+        let mut files = Vec::new();
+        let shaders = std::iter::once(&program.loaded)
+            .chain(lights.iter().map(|l| &l.loaded))
+            .chain(program.displacement.iter().map(|d| &d.loaded));
+        for shader in shaders {
+            for (_, file) in shader.sources.files() {
+                let path = PathBuf::from(&file.name);
+                // Standard-library modules and macro expansions are not files on disk.
+                if path.is_file() && !files.contains(&path) {
+                    files.push(path);
+                }
+            }
+        }
         Ok(Compiled {
+            files,
             wgsl,
             module: program.gpu.module.clone(),
             interface: program.gpu.interface.clone(),
@@ -365,6 +379,9 @@ pub struct Compiled {
     pub interface: Interface,
     /// Warnings from checking the sources (empty when there were none).
     pub warnings: Diagnostics,
+    /// Every file on disk the program was compiled from: the shader's, its lights', and
+    /// everything they include (for rebuilding or reloading when one changes).
+    pub files: Vec<PathBuf>,
     pub(crate) program: Arc<SurfaceProgram>,
     pub(crate) lights: Arc<Vec<LightProgram>>,
 }

@@ -218,3 +218,59 @@ fn the_benchmarks_specialized_program_draws_the_dynamic_picture() {
     assert!(bytes(&fixed) * 3 < bytes(&dynamic), "{} vs {} bytes", bytes(&fixed), bytes(&dynamic));
     assert_same_pictures(&s);
 }
+
+/// A surface with a point parameter the scene fixes, under a distant light whose `from` and `to`
+/// are points too: values the shader sees in camera space.
+const SPOT: &str = "surface spot(point centre = point(0, 0, 0); float radius = 0.45; float Kd = 0.8)
+{
+    normal Nf = normalize(N);
+    color lit = 0;
+    illuminance(P, Nf, PI / 2) {
+        lit += Cl * max(normalize(L) . Nf, 0);
+    }
+    float inside = 1 - smoothstep(radius - 0.1, radius + 0.1, distance(P, centre));
+    Ci = Cs * Kd * (0.1 + lit) * (0.3 + 0.7 * inside);
+    Oi = 1;
+}
+";
+
+/// A sphere shaded by SPOT, its spot at a world-space point on the sphere's front.
+fn spot_scene() -> Scene {
+    let dir = std::env::temp_dir().join(format!("patina-bind-spot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("spot.sl"), SPOT).unwrap();
+    let text = format!(
+        "[output]\nwidth = 40\nheight = 40\n[camera]\nfrom = [0.0, 0.0, -3.5]\nto = [0.0, 0.0, 0.0]\n\
+         {LIGHT}[[object]]\nmesh = \"sphere\"\ndetail = 24\nshader = \"spot.sl\"\n\
+         params = {{ centre = [0.35, 0.3, -0.89], Kd = 0.9 }}\n"
+    );
+    Scene::parse(&text, dir.join("spot.toml"), &dir).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn the_cache_serves_a_moving_camera() {
+    let mut s = spot_scene();
+    let mut cache = render::Cache::new();
+    let first = render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!((cache.hits, cache.misses), (0, 2), "the light and the surface are compiled");
+    // Points the scene fixes depend on the camera: they stay in the uniform block, where the
+    // host part puts them in the camera's space.
+    let uniforms = |p: &Prepared| -> Vec<String> {
+        p.objects[0].surface.gpu.interface.uniforms.iter().map(|u| u.name.clone()).collect()
+    };
+    assert!(uniforms(&first).iter().any(|n| n.contains("centre")), "{:?}", uniforms(&first));
+    assert!(!uniforms(&first).iter().any(|n| n.contains("Kd")), "Kd is compiled in: {:?}", uniforms(&first));
+
+    s.camera.from = glam::Vec3::new(1.6, 0.9, -3.0);
+    let moved = render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!((cache.hits, cache.misses), (2, 2), "the second camera compiles nothing");
+    let fresh = prepared(&s, true);
+    let (moved_images, fresh_images) = (images(&moved), images(&fresh));
+    assert_eq!(moved_images[0].pixels, fresh_images[0].pixels, "CPU: the cached program's picture differs");
+    if let (Some(a), Some(f)) = (moved_images.get(1), fresh_images.get(1)) {
+        assert_eq!(a.pixels, f.pixels, "GPU: the cached program's picture differs");
+    }
+    assert_ne!(moved_images[0].pixels, images(&first)[0].pixels, "the camera moved");
+    // The same specialized program draws what the dynamic one does, from either camera.
+    assert_same_pictures(&s);
+}

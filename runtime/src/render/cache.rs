@@ -1,17 +1,20 @@
 //! Compiled shaders by binding (DESIGN.md §4), so that preparing a scene again — with new values
-//! of its animated parameters, or the same shader on another object — compiles nothing.
+//! of its animated parameters, from another camera, or the same shader on another object —
+//! compiles nothing.
 //!
 //! A surface's key is everything its compiled program depends on: the shader file (by path and
 //! text), which shader of it, the values binding compiles in (the parameters the scene sets and
 //! does not animate, its strings), its displacement, its lights (each by file, text, name and
-//! parameters), the camera (fixed points and vectors are compiled in camera space) and whether it
-//! is specialized. Files a shader includes are not part of the key: editing an included file
-//! needs a fresh cache.
+//! parameters) and whether it is specialized. The camera is not part of it: binding compiles in
+//! no value that depends on the camera (a point, vector or normal the scene gives in world space
+//! is seen by the shader in camera space, so it stays in the uniform block, see
+//! `program::camera_dependent`), and a program found here is rebound to the new camera (its host
+//! part runs again, `program::rebind_surface` and `program::rebind_light`). Such parameters are
+//! still in the key by their world-space value, which the camera does not change. Files a shader
+//! includes are not part of the key: editing an included file needs a fresh cache.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
-
-use glam::Mat4;
 
 use super::program::{LightProgram, SurfaceProgram};
 use crate::scene::{ParamValue, ShaderRef};
@@ -80,9 +83,9 @@ pub(super) fn shader_key(shader: &ShaderRef, skip: &[String]) -> String {
     key
 }
 
-/// The key of a light: the shader with all its values, and the camera.
-pub(super) fn light_key(shader: &ShaderRef, world_to_camera: Mat4, specialize: bool) -> String {
-    format!("{}|{:?}|{specialize}", shader_key(shader, &[]), world_to_camera.to_cols_array())
+/// The key of a light: the shader with all its values.
+pub(super) fn light_key(shader: &ShaderRef, specialize: bool) -> String {
+    format!("{}|{specialize}", shader_key(shader, &[]))
 }
 
 /// The key of a surface: see the module documentation.
@@ -90,7 +93,6 @@ pub(super) fn surface_key(
     surface: &ShaderRef,
     displacement: Option<&ShaderRef>,
     light_keys: &[String],
-    world_to_camera: Mat4,
     specialize: bool,
 ) -> String {
     let skip = if specialize { surface.animate.clone() } else { surface.params.keys().cloned().collect() };
@@ -101,7 +103,7 @@ pub(super) fn surface_key(
     for l in light_keys {
         let _ = write!(key, "|light {l}");
     }
-    let _ = write!(key, "|{:?}|{specialize}", world_to_camera.to_cols_array());
+    let _ = write!(key, "|{specialize}");
     key
 }
 

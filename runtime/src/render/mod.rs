@@ -131,7 +131,7 @@ pub fn prepare_with(scene: &Scene, options: Options) -> Result<Prepared, RenderE
 
 /// As [`prepare_with`], taking compiled programs from `cache` where their binding is the same and
 /// keeping the ones it compiles there: preparing the scene again with new values of animated
-/// parameters (or with the same shader on several objects) compiles nothing.
+/// parameters, from another camera (or with the same shader on several objects) compiles nothing.
 pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Result<Prepared, RenderError> {
     let specialize = options.specialize;
     let camera = scene.camera();
@@ -144,9 +144,9 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
     let mut lights = Vec::new();
     let mut light_keys = Vec::new();
     for light in &scene.lights {
-        let key = cache::light_key(&light.shader, world_to_camera, specialize);
+        let key = cache::light_key(&light.shader, specialize);
         let program = match cache.light(&key) {
-            Some(p) => p.clone(),
+            Some(cached) => program::rebind_light(cached, &light.shader, world_to_camera, &light_spaces)?,
             None => {
                 let loaded = program::load(&light.shader, ShaderKind::Light, world_to_camera, specialize)?;
                 let p = program::light_program(loaded, &light_spaces)?;
@@ -175,10 +175,11 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
                 [near, far]
             },
         };
-        let key =
-            cache::surface_key(&o.surface, o.displacement.as_ref(), &light_keys, world_to_camera, specialize);
+        let key = cache::surface_key(&o.surface, o.displacement.as_ref(), &light_keys, specialize);
         let surface = match cache.surface(&key) {
-            Some(cached) => program::rebind_surface(cached, &o.surface, world_to_camera, &frame)?,
+            Some(cached) => {
+                program::rebind_surface(cached, &o.surface, o.displacement.as_ref(), world_to_camera, &frame)?
+            }
             None => {
                 let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera, specialize)?;
                 let displacement = match &o.displacement {

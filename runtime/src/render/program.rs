@@ -69,11 +69,13 @@ pub fn scene_params(
 }
 
 /// A compiled surface given new values of its animated parameters (`shader` is the scene's
-/// entry, whose other values the program was compiled for) and a new frame: the host part runs
-/// again, nothing is compiled.
+/// entry, whose other values the program was compiled for; `displacement` its displacement's), a
+/// new camera and a new frame: the parameters are taken into the new camera space and the host
+/// part runs again; nothing is compiled.
 pub fn rebind_surface(
     cached: &SurfaceProgram,
     shader: &ShaderRef,
+    displacement: Option<&ShaderRef>,
     world_to_camera: Mat4,
     frame: &Frame,
 ) -> Result<SurfaceProgram, RenderError> {
@@ -83,14 +85,32 @@ pub fn rebind_surface(
     let host_outputs = host_outputs(&surface.stages);
     surface.uniforms =
         evaluate_params(&surface.host, &surface.loaded.params, &frame.spaces, Some(frame), &host_outputs)?;
-    if let Some(d) = &mut surface.displacement {
+    if let (Some(d), Some(shader)) = (&mut surface.displacement, displacement) {
+        d.loaded.params = scene_params(&d.loaded.shader, shader, world_to_camera)?.1;
         d.values = evaluate_params(&d.cpu, &d.loaded.params, &frame.spaces, Some(frame), &[])?;
     }
     Ok(surface)
 }
 
+/// A compiled light seen from a new camera (`shader` is the scene's entry it was compiled for):
+/// its parameter values are computed again in the new camera space, nothing is compiled.
+pub fn rebind_light(
+    cached: &LightProgram,
+    shader: &ShaderRef,
+    world_to_camera: Mat4,
+    spaces: &[(String, Mat4)],
+) -> Result<LightProgram, RenderError> {
+    let mut light = cached.clone();
+    let (_, params) = scene_params(&light.loaded.shader, shader, world_to_camera)?;
+    light.loaded.params = params;
+    light.values = evaluate_params(&light.cpu, &light.loaded.params, spaces, None, &[])?;
+    Ok(light)
+}
+
 /// Reads, checks and differentiates the shader a scene refers to; with `specialize`, first binds
-/// it to the parameter values the scene sets and does not animate (`patina_compiler::bind`).
+/// it to the parameter values the scene sets and does not animate (`patina_compiler::bind`),
+/// except those whose value depends on the camera ([`camera_dependent`]): they stay in the
+/// uniform block, so that the program serves every camera.
 pub fn load(
     shader: &ShaderRef,
     kind: ShaderKind,
@@ -138,9 +158,13 @@ pub fn load(
     }
     let (strings, params) = scene_params(shader_ir, shader, world_to_camera)?;
     let (mut shader_ir, decisions) = if specialize {
+        let ty = |name: &str| {
+            shader_ir.params.iter().map(|p| shader_ir.local(*p)).find(|l| l.name == name).map(|l| l.ty)
+        };
         let fixed: Vec<Fixed> = params
             .iter()
             .filter(|(name, _)| !shader.animate.contains(name))
+            .filter(|(name, _)| !ty(name).is_some_and(camera_dependent))
             .map(|(name, value)| Fixed { name: name.clone(), value: value.clone() })
             .collect();
         // The renderer reads back Ci, Oi or the result, never an output parameter.
@@ -169,9 +193,16 @@ fn kind_name(kind: ShaderKind) -> &'static str {
     }
 }
 
+/// Whether a parameter's scene value is transformed into camera space ([`to_current`]), so that
+/// its value in the shader depends on the camera: a point, vector or normal (not an array of
+/// them; a matrix is taken as it is).
+pub fn camera_dependent(ty: Type) -> bool {
+    !ty.is_array() && matches!(ty.base, Base::Point | Base::Vector | Base::Normal)
+}
+
 /// Scene values of geometric types are in world space; shaders see them in camera space.
 pub fn to_current(ty: Type, v: Vec<f64>, world_to_camera: Mat4) -> Vec<f64> {
-    if ty.is_array() || v.len() != 3 {
+    if !camera_dependent(ty) || v.len() != 3 {
         return v;
     }
     let x = Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);

@@ -47,6 +47,7 @@
 mod facade;
 #[cfg(feature = "wgpu")]
 pub mod gpu;
+pub mod testing;
 
 pub use facade::{CompileError, Compiled, Compiler, Diagnostics, Light, UniformError, Uniforms, Value, View};
 pub use patina_compiler::backend::wgsl::interface::{self, Interface};

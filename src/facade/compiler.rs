@@ -267,6 +267,19 @@ impl Compiler {
         }
     }
 
+    /// The checked, bound and differentiated shader of `text` with its warnings, for the CPU
+    /// reference ([`crate::testing`]): the [`shader`](Compiler::shader) named, or the first, of `kind`.
+    pub(crate) fn load_shader(
+        &self,
+        name: &str,
+        text: &str,
+        dir: Option<&Path>,
+        kind: ShaderKind,
+    ) -> Result<(LoadedShader, Diagnostics), CompileError> {
+        let loaded = self.load(name, text, dir, kind, self.shader.as_deref(), &self.fixed)?;
+        Ok((loaded.shader, loaded.warnings))
+    }
+
     /// Checks a source, picks its shader of `kind`, binds it to `fixed` and differentiates it.
     fn load(
         &self,

@@ -311,13 +311,24 @@ pub struct Parameter {
     pub name: String,
     /// The language type (`float`, `color`, `point`, `string`, `float[4]`, ...).
     pub ty: String,
-    /// Its default, when the default is a constant (`None` when it reads spaces or other
-    /// parameters: the host computes it).
+    /// Its default, when it does not depend on the view (`None` when it reads a space or a
+    /// predefined variable, as `point "shader" (0, 0, 0)` does: the host computes it per draw).
+    /// A default written in terms of other parameters is given for their defaults.
     pub default: Option<Vec<f64>>,
     /// The value binding compiled in (`--fix`), if any; such a parameter has no uniform.
     pub fixed: Option<Vec<f64>>,
     /// Whether the shader writes it (an output parameter).
     pub output: bool,
+}
+
+/// A light or displacement shader bound into the program, with its parameters
+/// ([`UniformSource::LightParam`] and [`UniformSource::DisplacementParam`] read them).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LightInterface {
+    /// The shader's name.
+    pub shader: String,
+    /// Its parameters.
+    pub params: Vec<Parameter>,
 }
 
 /// Everything outside the module that a compiled program needs.
@@ -339,6 +350,10 @@ pub struct Interface {
     pub uniform_size: u32,
     /// The surface shader's parameters.
     pub params: Vec<Parameter>,
+    /// The bound lights, numbered as [`UniformSource::LightParam`] numbers them.
+    pub lights: Vec<LightInterface>,
+    /// The bound displacement shader, if any.
+    pub displacement: Option<LightInterface>,
     /// Whether the uniform block holds values only the host stage computes
     /// ([`UniformSource::Host`]): then the block must be filled by running the host part (the
     /// facade's `Uniforms` does); a program compiled with the host folded in has none.
@@ -364,6 +379,8 @@ impl Default for Interface {
             uniforms: Vec::new(),
             uniform_size: 0,
             params: Vec::new(),
+            lights: Vec::new(),
+            displacement: None,
             needs_host: false,
             attributes: Vec::new(),
             varyings: Vec::new(),

@@ -210,7 +210,18 @@ pub fn compile_object(
         needs_host: uniforms.iter().any(|u| matches!(u.source, UniformSource::Host { .. })),
         uniforms,
         uniform_size,
-        params: params::parameters(stages, strings),
+        params: params::surface_parameters(stages, strings),
+        lights: lights
+            .iter()
+            .map(|l| interface::LightInterface {
+                shader: l.shader.name.to_string(),
+                params: params::parameters(l.shader, &[], &l.strings),
+            })
+            .collect(),
+        displacement: displacement.map(|d| interface::LightInterface {
+            shader: d.shader.name.to_string(),
+            params: params::parameters(d.shader, &[], &d.strings),
+        }),
         attributes,
         varyings,
         textures,

@@ -57,6 +57,10 @@ pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
             eprintln!("{d}");
             format!("`{}` has errors", args.file.display())
         }
+        // A limit or a missing feature of a valid program: its headline, as one line.
+        CompileError::Program(d) => {
+            d.iter().next().map_or_else(|| d.to_string(), |first| first.message.clone())
+        }
         e => e.to_string(),
     })?;
     if !compiled.warnings.is_empty() {

@@ -376,8 +376,9 @@ fn kind_name(kind: ShaderKind) -> &'static str {
     }
 }
 
+/// A diagnostic from a stage after checking (a limit, a feature the GPU lacks, an internal error).
 fn internal(d: Diagnostic, shader: &LoadedShader) -> CompileError {
-    CompileError::Diagnostics(Diagnostics::new(Arc::clone(&shader.sources), vec![d]))
+    CompileError::Program(Diagnostics::new(Arc::clone(&shader.sources), vec![d]))
 }
 
 /// A compiled surface shader: the WGSL, the naga module it is written from, and the interface
@@ -477,6 +478,9 @@ impl std::error::Error for Diagnostics {}
 pub enum CompileError {
     /// The source has errors (rendered by `Display`).
     Diagnostics(Diagnostics),
+    /// The source is valid, but the program cannot be built: a resource limit (the number of
+    /// bound lights, ...), a feature the GPU back end lacks, or an internal error.
+    Program(Diagnostics),
     /// A file could not be read.
     Io {
         /// The file.
@@ -524,7 +528,7 @@ pub enum CompileError {
 impl fmt::Display for CompileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            CompileError::Diagnostics(d) => write!(f, "{d}"),
+            CompileError::Diagnostics(d) | CompileError::Program(d) => write!(f, "{d}"),
             CompileError::Io { path, message } => write!(f, "cannot read `{}`: {message}", path.display()),
             CompileError::NoShader { file, kind, name: Some(name) } => {
                 write!(f, "`{file}` has no {kind} shader `{name}`")
@@ -547,7 +551,7 @@ impl fmt::Display for CompileError {
 impl std::error::Error for CompileError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
-            CompileError::Diagnostics(d) => Some(d),
+            CompileError::Diagnostics(d) | CompileError::Program(d) => Some(d),
             _ => None,
         }
     }

@@ -26,7 +26,9 @@ fn the_headless_example_draws_what_patina_render_draws() {
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("NODEVICE_SELECT", "1")
         .output()
-        .expect("the headless example runs (cargo test builds it)");
+        .unwrap_or_else(|e| {
+            panic!("{e}: the headless example did not run (`cargo test` builds it; alone, run `cargo build --example headless` first)")
+        });
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let drawn = Image::read_png(&png).expect("the example's PNG");
 

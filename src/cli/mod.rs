@@ -11,6 +11,7 @@ mod plot;
 mod progress;
 mod render;
 mod stability;
+mod watch;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -48,6 +49,9 @@ enum Command {
     /// functions and surface shaders: non-finite results per backend and the backends' errors;
     /// exit 1 when a finite input gave a non-finite output.
     Stability(StabilityArgs),
+    /// Render a scene, then render it again whenever the scene or a shader it uses (or a file
+    /// included) changes, printing each outcome; an error keeps the last good image.
+    Watch(watch::WatchArgs),
 }
 
 /// Arguments of `patina stability`.
@@ -279,5 +283,6 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Gallery(args) => gallery::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Stability(args) => stability::run(args),
+        Command::Watch(args) => watch::run(args),
     }
 }

@@ -3,9 +3,11 @@
 
 mod compiler;
 mod uniforms;
+mod watch;
 
 pub use compiler::{CompileError, Compiled, Compiler, Diagnostics, Light};
 pub use uniforms::{UniformError, Uniforms, View};
+pub use watch::{FileWatcher, Update, WatchError, Watcher};
 
 use patina_compiler::ir::types::{Base, Type};
 

@@ -50,8 +50,8 @@ pub mod gpu;
 pub mod testing;
 
 pub use facade::{
-    CompileError, Compiled, Compiler, Diagnostics, FileWatcher, Light, UniformError, Uniforms, Update, Value, View,
-    WatchError, Watcher,
+    CompileError, Compiled, Compiler, Diagnostics, FileWatcher, Light, UniformError, Uniforms, Update, Value,
+    View, WatchError, Watcher,
 };
 pub use patina_compiler::backend::wgsl::interface::{self, Interface};
 pub use patina_runtime::camera::Camera;

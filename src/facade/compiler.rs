@@ -179,19 +179,8 @@ impl Compiler {
             patina_compiler::split::split
         };
         let stages = split(&surface.shader).map_err(|d| internal(d, &surface))?;
-        let bound: Vec<BoundLight> = lights
-            .iter()
-            .map(|l| BoundLight {
-                shader: &l.loaded.shader,
-                strings: l.loaded.strings.clone(),
-                categories: Vec::new(),
-            })
-            .collect();
-        let bound_displacement = displacement.as_ref().map(|d| BoundLight {
-            shader: &d.loaded.shader,
-            strings: d.loaded.strings.clone(),
-            categories: Vec::new(),
-        });
+        let bound: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
+        let bound_displacement = displacement.as_ref().map(|d| d.loaded.bound());
         let mut gpu = wgsl::compile_object(&stages, bound_displacement.as_ref(), &bound, &surface.strings)
             .map_err(|d| internal(d, &surface))?;
         drop((bound, bound_displacement));

@@ -36,6 +36,13 @@ pub struct LoadedShader {
     pub sources: Arc<SourceMap>,
 }
 
+impl LoadedShader {
+    /// The shader as the WGSL backend binds it beside a surface (a light or a displacement).
+    pub fn bound(&self) -> BoundLight<'_> {
+        BoundLight { shader: &self.shader, strings: self.strings.clone(), categories: Vec::new() }
+    }
+}
+
 /// The values a scene gives a shader's parameters: strings (texture and space names) and numbers,
 /// the latter in "current" (camera) space.
 #[allow(clippy::type_complexity)]
@@ -283,14 +290,7 @@ pub fn surface_program(
 ) -> Result<SurfaceProgram, RenderError> {
     let spaces = &frame.spaces;
     let stages = split::split(&loaded.shader).map_err(|d| RenderError::Compile(d.message))?;
-    let bound: Vec<BoundLight> = lights
-        .iter()
-        .map(|l| BoundLight {
-            shader: &l.loaded.shader,
-            strings: l.loaded.strings.clone(),
-            categories: Vec::new(),
-        })
-        .collect();
+    let bound: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
     let displacement = match displacement {
         Some(d) => {
             let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
@@ -301,11 +301,7 @@ pub fn surface_program(
         }
         None => None,
     };
-    let bound_displacement = displacement.as_ref().map(|d| BoundLight {
-        shader: &d.loaded.shader,
-        strings: d.loaded.strings.clone(),
-        categories: Vec::new(),
-    });
+    let bound_displacement = displacement.as_ref().map(|d| d.loaded.bound());
     let gpu = wgsl::compile_object(&stages, bound_displacement.as_ref(), &bound, &loaded.strings)
         .map_err(|d| RenderError::Compile(d.message))?;
     let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };

@@ -37,7 +37,7 @@ use patina_runtime::gpu::Gpu;
 use patina_runtime::image::{Comparison, Image, ImageError, Thresholds, compare};
 use patina_runtime::render::program::LoadedShader;
 use patina_runtime::render::{self, Backend, RenderError};
-use patina_runtime::scene::{Scene, SceneError};
+use patina_runtime::scene::{Scene, SceneError, toml_string};
 
 use crate::facade::components;
 use crate::{CompileError, Compiler, Diagnostics, Value};
@@ -691,19 +691,4 @@ color = [0.9, 0.35, 0.2]
     );
     // A relative path is relative to the current directory, as for `shade_file`.
     Scene::parse(&text, "sphere_scene.toml", ".").map_err(TestError::Scene)
-}
-
-/// `s` as a TOML basic string.
-fn toml_string(s: &str) -> String {
-    let mut out = String::from("\"");
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            c if c.is_control() => out.push_str(&format!("\\u{:04X}", c as u32)),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
 }

@@ -2,6 +2,7 @@
 //! rasterizer that the GPU output is measured against.
 
 pub mod camera;
+pub mod corpus;
 pub mod gpu;
 pub mod image;
 pub mod kernel;

@@ -3,6 +3,7 @@
 mod bench;
 mod check;
 mod compile;
+mod corpus;
 mod eval;
 mod explain;
 mod explain_scene;
@@ -52,6 +53,34 @@ enum Command {
     /// Render a scene, then render it again whenever the scene or a shader it uses (or a file
     /// included) changes, printing each outcome; an error keeps the last good image.
     Watch(watch::WatchArgs),
+    /// Check, compile and render every shader file of a directory (third-party shaders) on both
+    /// backends, in a scene made for each shader's kind; write a results table and a contact sheet.
+    Corpus(CorpusArgs),
+}
+
+/// Arguments of `patina corpus`.
+#[derive(clap::Args, Debug)]
+pub struct CorpusArgs {
+    /// The directory of shader files (searched recursively for `.sl`).
+    dir: PathBuf,
+    /// Add an `#include` search directory (after each file's own; repeat for more).
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
+    /// Write the results as a Markdown page (printed as a table otherwise).
+    #[arg(long, value_name = "FILE")]
+    markdown: Option<PathBuf>,
+    /// Write the pictures as one PNG: GPU left, CPU right, per shader file.
+    #[arg(long, value_name = "FILE")]
+    sheet: Option<PathBuf>,
+    /// Render on the CPU reference only.
+    #[arg(long)]
+    cpu_only: bool,
+    /// The test picture's width in pixels.
+    #[arg(long, default_value_t = 64)]
+    width: u32,
+    /// The test picture's height in pixels.
+    #[arg(long, default_value_t = 48)]
+    height: u32,
 }
 
 /// Arguments of `patina stability`.
@@ -284,5 +313,6 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Bench(args) => bench::run(args),
         Command::Stability(args) => stability::run(args),
         Command::Watch(args) => watch::run(args),
+        Command::Corpus(args) => corpus::run(args),
     }
 }

@@ -289,3 +289,18 @@ impl Scene {
         self.output.width as f32 / self.output.height.max(1) as f32
     }
 }
+
+/// `s` as a TOML basic string, for scene text written by a program.
+pub fn toml_string(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if c.is_control() => out.push_str(&format!("\\u{:04X}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}

@@ -355,8 +355,15 @@ fn shade_batch(
             })
             .map(|(name, v)| (name, v.as_slice()))
             .collect();
-        let outs =
-            light.eval_points(n, &inputs, &["L", "Cl"]).map_err(|e| RenderError::Compile(e.to_string()))?;
+        // A light that never sets `L` (an ambient light without `solar` or `illuminate`) leaves
+        // it zero, as on the GPU.
+        let has_l = lp.slot("L").is_some();
+        let wanted: &[&str] = if has_l { &["L", "Cl"] } else { &["Cl"] };
+        let mut outs =
+            light.eval_points(n, &inputs, wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
+        if !has_l {
+            outs.insert(0, vec![0.0; n * 3]);
+        }
         let (mut l, cl) = (outs[0].clone(), outs[1].clone());
         for x in &mut l {
             *x = -*x;

@@ -28,8 +28,13 @@ use patina_compiler::backend::cpu::Texture;
 use super::RenderError;
 use crate::gpu::{Address, Filter, TextureData, TextureDimension};
 
-/// Loads or generates the texture `name`.
+/// Loads or generates the texture `name`. The empty name is no texture: a single black,
+/// transparent texel, so that every lookup reads 0, as RenderMan renderers answer a lookup of a
+/// missing map (shaders default their map names to `""` and often look up unguarded).
 pub fn load(name: &str, base: &Path) -> Result<Texture, RenderError> {
+    if name.is_empty() {
+        return Ok(Texture { size: [1, 1, 1], texels: Arc::from(vec![[0.0; 4]]) });
+    }
     let count =
         |spec: Option<&str>, default: u32| -> Result<u32, RenderError> {
             match spec {

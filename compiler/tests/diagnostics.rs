@@ -114,9 +114,9 @@ fn malformed_exponent() {
 #[test]
 fn integer_too_large() {
     let (codes, text) = run(&lines(&[
-        "surface noisy(uint seed = 4294967296)",
+        "surface shader float4 noisy(uint seed = 4294967296)",
         "{",
-        "    Ci = Cs * cellnoise(P * seed);",
+        "    return float4(1, 1, 1, seed);",
         "}",
     ]));
     assert_eq!(codes, ["E0106"]);
@@ -650,10 +650,10 @@ fn stray_closing_brace() {
 #[test]
 fn keyword_as_name() {
     let (codes, text) = run(&lines(&[
-        "surface fog(float density = 1)",
+        "surface shader float4 fog(float density = 1)",
         "{",
         "    float volume = 0.5;",
-        "    Ci = Cs * density;",
+        "    return float4(1, 1, 1, density);",
         "}",
     ]));
     assert_eq!(codes, ["E0306"]);
@@ -679,10 +679,10 @@ fn keyword_as_name_then_used() {
     // The declaration is taken with the keyword as its name, so the use is read as a name too:
     // one error at each, not a parse derailed at the use.
     let (codes, text) = run(&lines(&[
-        "surface plastic(float Kd = 1)",
+        "surface shader float4 plastic(float Kd = 1)",
         "{",
         "    float light = 0.5;",
-        "    Ci = Kd * Cs * light;",
+        "    return float4(1, 1, Kd, light);",
         "}",
     ]));
     assert_eq!(codes, ["E0306", "E0306"]);
@@ -941,11 +941,11 @@ fn else_after_two_statements() {
 fn independent_errors_in_text_order() {
     // Errors the parser recovers from and problems its actions find come in the order of the text.
     let (codes, text) = run(&lines(&[
-        "surface fog(float density = 1)",
+        "surface shader float4 fog(float density = 1)",
         "{",
         "    float volume = 1e39;",
-        "    Ci = density * * Cs;",
-        "    Oi = 3.5e39;",
+        "    float c = density * * 2;",
+        "    return float4(3.5e39, 1, 1, 1);",
         "}",
     ]));
     assert_eq!(codes, ["E0306", "E0107", "E0301", "E0107"]);

@@ -417,6 +417,91 @@ impl Ctx<'_> {
     }
 }
 
+/// Whether a token is a keyword only in the Stanford style: in a RenderMan-style file it is a name.
+fn stanford_only(kind: TokenKind) -> bool {
+    use TokenKind as T;
+    matches!(
+        kind,
+        T::Constant
+            | T::Vertex
+            | T::Fragment
+            | T::Perlight
+            | T::Primitive
+            | T::Int
+            | T::Uint
+            | T::Bool
+            | T::Float3
+            | T::Float4
+            | T::Matrix3
+            | T::Matrix4
+            | T::Texref
+            | T::Clampf
+    )
+}
+
+/// Whether a word followed by a name declares it: a type word.
+fn declares(kind: TokenKind) -> bool {
+    use TokenKind as T;
+    matches!(kind, T::Float | T::Color | T::Point | T::Vector | T::Normal | T::Matrix | T::String | T::Void)
+        || (stanford_only(kind)
+            && !matches!(kind, T::Constant | T::Vertex | T::Fragment | T::Perlight | T::Primitive))
+}
+
+/// The tokens of a RenderMan-style file with the words that are keywords only in the Stanford style
+/// turned into names (`surface constant()`, `float int = 1`), and the shader kinds used as
+/// variables inside a definition (`float light = 1`) too; `None` when nothing changes. A file is
+/// RenderMan-style when it defines a shader as `surface name(...)` and none as `surface shader
+/// type name(...)`; a file of functions only keeps every keyword (the standard library's are
+/// Stanford-style).
+fn renderman_words(tokens: &[Token]) -> Option<Vec<Token>> {
+    use TokenKind as T;
+    let is_kind = |k: TokenKind| matches!(k, T::Surface | T::Light | T::Displacement | T::Volume | T::Imager);
+    let mut depth = 0usize;
+    let mut renderman = false;
+    for (i, t) in tokens.iter().enumerate() {
+        let next = tokens.get(i + 1).map(|t| t.kind);
+        match t.kind {
+            T::LBrace | T::LParen | T::LBracket => depth += 1,
+            T::RBrace | T::RParen | T::RBracket => depth = depth.saturating_sub(1),
+            T::Shader if i > 0 && is_kind(tokens[i - 1].kind) => return None,
+            k if depth == 0 && is_kind(k) => {
+                let name = next.is_some_and(|n| n == T::Ident || stanford_only(n));
+                let paren = tokens.get(i + 2).is_some_and(|t| t.kind == T::LParen);
+                renderman |= name && paren;
+            }
+            _ => {}
+        }
+    }
+    if !renderman {
+        return None;
+    }
+    let mut out = tokens.to_vec();
+    let mut depth = 0usize;
+    for (i, token) in out.iter_mut().enumerate() {
+        let kind = token.kind;
+        let previous = i.checked_sub(1).map(|p| tokens[p].kind);
+        let next = tokens.get(i + 1).map(|t| t.kind);
+        match kind {
+            T::LBrace | T::LParen | T::LBracket => depth += 1,
+            T::RBrace | T::RParen | T::RBracket => depth = depth.saturating_sub(1),
+            // A qualifier or type word is followed by a name, another keyword or (a cast) `(`; one
+            // that is declared (`float int`, `surface constant(`) or followed by anything else
+            // (`int + 1`, `vertex;`) is a name.
+            k if stanford_only(k) => {
+                let declared = previous.is_some_and(|p| declares(p) || is_kind(p));
+                let as_keyword = next.is_some_and(|n| n == T::Ident || n == T::LParen || n.is_keyword());
+                if declared || !as_keyword {
+                    token.kind = T::Ident;
+                }
+            }
+            // `surface("Kd", Kd)` stays message passing; `light float f()` a function's context.
+            k if depth > 0 && is_kind(k) && next != Some(T::LParen) => token.kind = T::Ident,
+            _ => {}
+        }
+    }
+    Some(out)
+}
+
 /// Parses preprocessed tokens into a module, reporting every independent syntax error.
 pub fn parse(tokens: &[Token], sources: &SourceMap, diags: &mut Diagnostics) -> Module {
     // Unbalanced brackets derail any LR parser into a cascade of errors; report them alone.
@@ -425,6 +510,8 @@ pub fn parse(tokens: &[Token], sources: &SourceMap, diags: &mut Diagnostics) -> 
         diags.extend(delimiter_errors);
         return Module::default();
     }
+    let renderman_words = renderman_words(tokens);
+    let tokens: &[Token] = renderman_words.as_deref().unwrap_or(tokens);
     let ctx = Ctx { tokens, sources, reported: RefCell::default() };
     let input = tokens.iter().enumerate().map(|(i, t)| Ok::<_, Never>((i, t.kind, i + 1)));
     let result = grammar::ModuleParser::new().parse(&ctx, input);

@@ -348,3 +348,55 @@ fn compile_with_fixed_parameters_leaves_out_what_they_decide() {
     let out = patina(&["compile", shader.to_str().unwrap(), "--fix", "nope=1"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("has no parameter `nope`"));
 }
+
+#[test]
+fn compile_binds_a_light_displacement_or_volume_shader_to_a_surface() {
+    let dir = std::env::temp_dir().join(format!("patina-compile-bound-{}", std::process::id()));
+    let out_dir = dir.to_str().unwrap();
+    let json = |name: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap()).unwrap()
+    };
+    let wgsl = |name: &str| {
+        let text = std::fs::read_to_string(dir.join(format!("{name}.wgsl"))).unwrap();
+        naga::front::wgsl::parse_str(&text).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&text)));
+        text
+    };
+    // A light on its own: bound to the standard library's plastic, its parameters in the block.
+    let out = patina(&["compile", &example("lights.sl"), "--shader", "spotlight", "-o", out_dir]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j = json("spotlight");
+    assert_eq!(j["shader"], "plastic");
+    assert_eq!(j["lights"][0]["shader"], "spotlight");
+    let text = wgsl("spotlight");
+    assert!(text.contains("l0_coneangle") && text.contains("fn fs_main"), "{text}");
+    // Bound to a surface of the user's choosing.
+    let surface = format!("{}:plastic", example("plastic.sl"));
+    let out = patina(&["compile", &example("lights.sl"), "--surface", &surface, "-o", out_dir]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(json("pointlight")["lights"][0]["shader"], "pointlight");
+    // A displacement.
+    let out = patina(&["compile", &example("ripples.sl"), "-o", out_dir]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j = json("ripples");
+    assert_eq!(j["displacement"]["shader"], "ripples");
+    assert!(j["lights"].as_array().unwrap().is_empty());
+    assert!(wgsl("ripples").contains("fn displace"));
+    // A volume: the atmosphere after the surface, its opacity the fragment's alpha.
+    let out = patina(&["compile", &example("fog.sl"), "-o", out_dir]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j = json("fog");
+    assert_eq!(j["atmosphere"]["shader"], "fog");
+    assert_eq!(j["output"], "ci_oi");
+    let names: Vec<&str> =
+        j["uniforms"].as_array().unwrap().iter().map(|u| u["name"].as_str().unwrap()).collect();
+    assert!(names.contains(&"a_falloff") && names.contains(&"a_background"), "{names:?}");
+    assert!(wgsl("fog").contains("fn atmosphere"));
+    // --surface with a surface shader, and a surface file that is not there: one line each.
+    let out = patina(&["compile", &example("plastic.sl"), "--surface", &surface, "-o", out_dir]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(String::from_utf8_lossy(&out.stderr).lines().count(), 1);
+    let out = patina(&["compile", &example("fog.sl"), "--surface", "/nonexistent.sl", "-o", out_dir]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("cannot read `/nonexistent.sl`") && stderr.lines().count() == 1, "{stderr}");
+}

@@ -202,6 +202,7 @@ fn describe(source: &UniformSource) -> String {
         }
         UniformSource::LightParam { light, name } => format!("parameter `{name}` of light {light}"),
         UniformSource::DisplacementParam { name } => format!("parameter `{name}` of the displacement shader"),
+        UniformSource::AtmosphereParam { name } => format!("parameter `{name}` of the atmosphere shader"),
         UniformSource::Geometry { matrix } => match matrix {
             GeometryMatrix::ObjectToCamera => {
                 "the object-to-camera matrix (column vectors, `v' = M v`)".into()

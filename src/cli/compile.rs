@@ -1,10 +1,12 @@
 //! `patina compile`: a surface shader (with the lights it is bound to) to WGSL and a JSON
-//! description of its interface, through the library's `Compiler`.
+//! description of its interface, through the library's `Compiler`; a light, displacement or
+//! volume shader on its own is compiled bound to a surface (`--surface`, default `plastic`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use patina::{CompileError, Compiler, Light, Value};
+use patina_compiler::syntax::ast::ShaderKind;
 
 use super::CompileArgs;
 
@@ -37,13 +39,54 @@ fn light(spec: &str, file: &Path) -> Light {
     }
 }
 
+/// The kind and name of the shader of `file` that `patina compile` compiles: the one named, or
+/// the first surface shader, or (in a file without one) the first shader. `None` when the file
+/// does not check (compiling it reports why) or has no such shader.
+fn target(file: &Path, name: Option<&str>, include: &[PathBuf]) -> Option<(ShaderKind, String)> {
+    let text = patina_compiler::syntax::preprocess::read_source_file(file).ok()??;
+    let mut include_dirs: Vec<PathBuf> = file.parent().map(Path::to_path_buf).into_iter().collect();
+    include_dirs.extend(include.iter().cloned());
+    let checked = patina_compiler::check_source(
+        &file.display().to_string(),
+        &text,
+        &patina_compiler::syntax::preprocess::FsLoader { include_dirs },
+    );
+    if checked.has_errors() {
+        return None;
+    }
+    let shaders = &checked.program.shaders;
+    let found = match name {
+        Some(n) => shaders.iter().find(|s| s.name == n),
+        None => shaders.iter().find(|s| s.kind == ShaderKind::Surface).or(shaders.first()),
+    }?;
+    Some((found.kind, found.name.to_string()))
+}
+
+/// The surface a light, displacement or volume shader compiled on its own is bound to:
+/// `--surface PATH[:NAME]`, or the standard library's `plastic`.
+fn surface_source(spec: Option<&str>) -> Result<(String, String, Option<String>), String> {
+    let Some(spec) = spec else {
+        let module = "shaders.sl";
+        let text = patina_compiler::stdlib::source(module).ok_or("the standard library has no shaders.sl")?;
+        let shown = format!("{}/{module}", patina_compiler::stdlib::PREFIX);
+        return Ok((shown, text.to_string(), Some("plastic".into())));
+    };
+    let (path, name) = match spec.rsplit_once(':') {
+        Some((path, name)) if !Path::new(spec).is_file() => (path, Some(name.to_string())),
+        _ => (spec, None),
+    };
+    let text = match patina_compiler::syntax::preprocess::read_source_file(Path::new(path)) {
+        Ok(Some(text)) => text,
+        Ok(None) => return Err(format!("cannot read `{path}`: no such file")),
+        Err(reason) => return Err(format!("cannot read `{path}`: {reason}")),
+    };
+    Ok((path.to_string(), text, name))
+}
+
 pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
     let mut compiler = Compiler::new().fold_host(args.fold_host);
     for dir in &args.include {
         compiler = compiler.include_dir(dir);
-    }
-    if let Some(name) = &args.shader {
-        compiler = compiler.shader(name);
     }
     for spec in &args.light {
         compiler = compiler.light(light(spec, &args.file));
@@ -52,7 +95,53 @@ pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
         let (name, value) = parse_fixed(spec)?;
         compiler = compiler.fix(&name, value);
     }
-    let compiled = compiler.compile_file(&args.file).map_err(|e| match e {
+    // A light, displacement or volume shader is compiled bound to a surface (RenderMan binds them
+    // beside one); the files are named after it.
+    let bound = match target(&args.file, args.shader.as_deref(), &args.include) {
+        Some((kind @ (ShaderKind::Light | ShaderKind::Displacement | ShaderKind::Volume), name)) => {
+            Some((kind, name))
+        }
+        Some((ShaderKind::Imager, name)) => {
+            return Err(format!(
+                "`{name}` is an imager shader: imagers run over the finished image, not beside a \
+                 surface (bind one in a scene's [imager] table)"
+            ));
+        }
+        _ => None,
+    };
+    let result = match &bound {
+        Some((kind, name)) => {
+            let shader = Light::file(&args.file).named(name);
+            compiler = match kind {
+                ShaderKind::Light => compiler.light(shader),
+                ShaderKind::Displacement => compiler.displacement(shader),
+                _ => compiler.atmosphere(shader),
+            };
+            let (shown, text, surface) = surface_source(args.surface.as_deref())?;
+            if let Some(surface) = &surface {
+                compiler = compiler.shader(surface);
+            }
+            let dir = Path::new(&shown).parent().filter(|_| args.surface.is_some());
+            if let Some(dir) = dir {
+                compiler = compiler.include_dir(dir);
+            }
+            compiler.compile_source(&shown, &text)
+        }
+        None => {
+            if let Some(surface) = &args.surface {
+                return Err(format!(
+                    "`--surface {surface}`: `{}` has a surface shader; --surface binds a light, \
+                     displacement or volume shader compiled on its own",
+                    args.file.display()
+                ));
+            }
+            if let Some(name) = &args.shader {
+                compiler = compiler.shader(name);
+            }
+            compiler.compile_file(&args.file)
+        }
+    };
+    let compiled = result.map_err(|e| match e {
         CompileError::Diagnostics(d) => {
             eprintln!("{d}");
             format!("`{}` has errors", args.file.display())
@@ -72,8 +161,9 @@ pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
     let write = |path: PathBuf, text: &str| {
         std::fs::write(&path, text).map_err(|e| format!("cannot write `{}`: {e}", path.display()))
     };
-    let wgsl_path = args.output.join(format!("{}.wgsl", compiled.name()));
-    let json_path = args.output.join(format!("{}.json", compiled.name()));
+    let name = bound.as_ref().map_or(compiled.name(), |(_, name)| name.as_str());
+    let wgsl_path = args.output.join(format!("{name}.wgsl"));
+    let json_path = args.output.join(format!("{name}.json"));
     write(wgsl_path.clone(), &compiled.wgsl)?;
     write(json_path.clone(), &json)?;
     eprintln!("wrote {} and {}", wgsl_path.display(), json_path.display());

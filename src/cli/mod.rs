@@ -168,9 +168,14 @@ pub struct GalleryArgs {
 pub struct CompileArgs {
     /// The shader file.
     file: PathBuf,
-    /// The surface shader to compile (the file's first by default).
+    /// The shader of FILE to compile (its first surface shader by default, or, in a file without
+    /// one, its first shader).
     #[arg(long)]
     shader: Option<String>,
+    /// For a light, displacement or volume shader compiled on its own: the surface to bind it to,
+    /// `PATH` (its first surface shader) or `PATH:NAME` (default: the standard library's `plastic`).
+    #[arg(long, value_name = "FILE[:NAME]")]
+    surface: Option<String>,
     /// A light to bind: `NAME` (a light shader of FILE), `PATH` or `PATH:NAME` (repeat for more).
     #[arg(long, value_name = "LIGHT")]
     light: Vec<String>,

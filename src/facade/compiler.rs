@@ -37,11 +37,12 @@ pub struct Compiler {
     shader: Option<String>,
     lights: Vec<Light>,
     displacement: Option<Light>,
+    atmosphere: Option<Light>,
     fixed: Vec<(String, Value)>,
     fold_host: bool,
 }
 
-/// A light (or displacement) shader to bind: where its source is, which shader of it, and the
+/// A light (or displacement or atmosphere) shader to bind: where its source is, which shader of it, and the
 /// values it is compiled with.
 #[derive(Clone, Debug)]
 pub struct Light {
@@ -118,6 +119,13 @@ impl Compiler {
         self
     }
 
+    /// Binds an atmosphere (volume) shader, run after the surface at each fragment on its `Ci`
+    /// and `Oi` (fog, depth cueing); its parameters take the values given with [`Light::with`].
+    pub fn atmosphere(mut self, shader: Light) -> Compiler {
+        self.atmosphere = Some(shader);
+        self
+    }
+
     /// Compiles parameter `name` in as `value`: what it decides is left out, and it has no
     /// uniform (string parameters, such as texture names, are always compiled in; give them here).
     /// Points, vectors, normals and matrices cannot be fixed (their camera-space value depends on
@@ -173,6 +181,17 @@ impl Compiler {
             }
             None => None,
         };
+        let atmosphere = match &self.atmosphere {
+            Some(a) => {
+                let a = self.load_bound(a, ShaderKind::Volume)?;
+                warnings.extend(a.warnings);
+                let binding = Binding { lights: Vec::new(), strings: a.shader.strings.clone() };
+                let cpu =
+                    CpuProgram::compile(&a.shader.shader, &binding).map_err(|e| internal(e, &a.shader))?;
+                Some(DisplacementProgram { loaded: a.shader, cpu, values: Vec::new() })
+            }
+            None => None,
+        };
         let split = if self.fold_host {
             patina_compiler::split::split_folding_host
         } else {
@@ -181,9 +200,16 @@ impl Compiler {
         let stages = split(&surface.shader).map_err(|d| internal(d, &surface))?;
         let bound: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
         let bound_displacement = displacement.as_ref().map(|d| d.loaded.bound());
-        let mut gpu = wgsl::compile_object(&stages, bound_displacement.as_ref(), &bound, &surface.strings)
-            .map_err(|d| internal(d, &surface))?;
-        drop((bound, bound_displacement));
+        let bound_atmosphere = atmosphere.as_ref().map(|a| a.loaded.bound());
+        let mut gpu = wgsl::compile_shaded(
+            &stages,
+            bound_displacement.as_ref(),
+            bound_atmosphere.as_ref(),
+            &bound,
+            &surface.strings,
+        )
+        .map_err(|d| internal(d, &surface))?;
+        drop((bound, bound_displacement, bound_atmosphere));
         for p in &mut gpu.interface.params {
             p.fixed = surface.params.iter().find(|(n, _)| *n == p.name).map(|(_, v)| v.clone());
         }
@@ -204,11 +230,13 @@ impl Compiler {
             fragment,
             uniforms: Vec::new(),
             displacement,
+            atmosphere,
         };
         let mut files = Vec::new();
         let shaders = std::iter::once(&program.loaded)
             .chain(lights.iter().map(|l| &l.loaded))
-            .chain(program.displacement.iter().map(|d| &d.loaded));
+            .chain(program.displacement.iter().map(|d| &d.loaded))
+            .chain(program.atmosphere.iter().map(|a| &a.loaded));
         for shader in shaders {
             for (_, file) in shader.sources.files() {
                 let path = PathBuf::from(&file.name);

@@ -229,8 +229,20 @@ impl<'c> Uniforms<'c> {
             }
             None => Vec::new(),
         };
+        // The atmosphere's parameters take the values it was compiled with, or their defaults.
+        let atmosphere = match &program.atmosphere {
+            Some(a) => {
+                evaluate_params(&a.cpu, &a.loaded.params, &frame.spaces, Some(&frame), &[]).map_err(host)?
+            }
+            None => Vec::new(),
+        };
         let light_refs: Vec<&[(String, Vec<f64>)]> = lights.iter().map(Vec::as_slice).collect();
-        let values = HostValues { surface: &surface, lights: &light_refs, displacement: &displacement };
+        let values = HostValues {
+            surface: &surface,
+            lights: &light_refs,
+            displacement: &displacement,
+            atmosphere: &atmosphere,
+        };
         uniform_bytes(&self.compiled.interface, &values, &frame).map_err(host)
     }
 

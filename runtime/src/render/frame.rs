@@ -136,6 +136,8 @@ pub struct HostValues<'a> {
     pub lights: &'a [&'a [(String, Vec<f64>)]],
     /// The displacement shader's, by name (empty without one).
     pub displacement: &'a [(String, Vec<f64>)],
+    /// The atmosphere shader's, by name (empty without one).
+    pub atmosphere: &'a [(String, Vec<f64>)],
 }
 
 /// The value of a uniform field's source, in the language's component order (matrices as
@@ -171,6 +173,9 @@ pub fn uniform_value(
             .ok_or_else(|| missing(format!("light {light} `{name}`")))?,
         UniformSource::DisplacementParam { name } => {
             find(values.displacement, name).ok_or_else(|| missing(format!("displacement `{name}`")))?
+        }
+        UniformSource::AtmosphereParam { name } => {
+            find(values.atmosphere, name).ok_or_else(|| missing(format!("atmosphere `{name}`")))?
         }
         UniformSource::Geometry { matrix: which } => matrix(match which {
             GeometryMatrix::ObjectToCamera => frame.object_to_camera,
@@ -232,6 +237,7 @@ pub fn program_uniform_bytes(
         surface: &surface.uniforms,
         lights: &light_values,
         displacement: surface.displacement.as_ref().map_or(&[], |d| d.values.as_slice()),
+        atmosphere: surface.atmosphere.as_ref().map_or(&[], |a| a.values.as_slice()),
     };
     uniform_bytes(&surface.gpu.interface, &values, frame)
 }

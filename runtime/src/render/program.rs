@@ -86,6 +86,18 @@ pub fn rebind_surface(
     world_to_camera: Mat4,
     frame: &Frame,
 ) -> Result<SurfaceProgram, RenderError> {
+    rebind_shaded(cached, shader, displacement, None, world_to_camera, frame)
+}
+
+/// As [`rebind_surface`], with the atmosphere's scene entry (`atmosphere`).
+pub fn rebind_shaded(
+    cached: &SurfaceProgram,
+    shader: &ShaderRef,
+    displacement: Option<&ShaderRef>,
+    atmosphere: Option<&ShaderRef>,
+    world_to_camera: Mat4,
+    frame: &Frame,
+) -> Result<SurfaceProgram, RenderError> {
     let mut surface = cached.clone();
     let (_, params) = scene_params(&surface.loaded.shader, shader, world_to_camera)?;
     surface.loaded.params = params;
@@ -95,6 +107,10 @@ pub fn rebind_surface(
     if let (Some(d), Some(shader)) = (&mut surface.displacement, displacement) {
         d.loaded.params = scene_params(&d.loaded.shader, shader, world_to_camera)?.1;
         d.values = evaluate_params(&d.cpu, &d.loaded.params, &frame.spaces, Some(frame), &[])?;
+    }
+    if let (Some(a), Some(shader)) = (&mut surface.atmosphere, atmosphere) {
+        a.loaded.params = scene_params(&a.loaded.shader, shader, world_to_camera)?.1;
+        a.values = evaluate_params(&a.cpu, &a.loaded.params, &frame.spaces, Some(frame), &[])?;
     }
     Ok(surface)
 }
@@ -263,6 +279,9 @@ pub struct SurfaceProgram {
     pub uniforms: Vec<(String, Vec<f64>)>,
     /// The displacement shader run before the surface at each fragment, if any.
     pub displacement: Option<DisplacementProgram>,
+    /// The atmosphere (volume) shader run after the surface at each fragment, on its `Ci` and
+    /// `Oi`, if any (the same kind of program as a displacement: a shader bound beside the surface).
+    pub atmosphere: Option<DisplacementProgram>,
 }
 
 /// Compiles a light and computes its parameter values.
@@ -288,22 +307,39 @@ pub fn surface_program(
     lights: &[LightProgram],
     frame: &Frame,
 ) -> Result<SurfaceProgram, RenderError> {
+    shaded_program(loaded, displacement, None, lights, frame)
+}
+
+/// As [`surface_program`], with an atmosphere (volume) shader run after the surface.
+pub fn shaded_program(
+    loaded: LoadedShader,
+    displacement: Option<LoadedShader>,
+    atmosphere: Option<LoadedShader>,
+    lights: &[LightProgram],
+    frame: &Frame,
+) -> Result<SurfaceProgram, RenderError> {
     let spaces = &frame.spaces;
     let stages = split::split(&loaded.shader).map_err(|d| RenderError::Compile(d.message))?;
     let bound: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
-    let displacement = match displacement {
-        Some(d) => {
-            let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
-            let cpu =
-                CpuProgram::compile(&d.shader, &binding).map_err(|e| RenderError::Compile(e.message))?;
-            let values = evaluate_params(&cpu, &d.params, spaces, Some(frame), &[])?;
-            Some(DisplacementProgram { loaded: d, cpu, values })
-        }
-        None => None,
+    let beside = |d: Option<LoadedShader>| -> Result<Option<DisplacementProgram>, RenderError> {
+        let Some(d) = d else { return Ok(None) };
+        let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
+        let cpu = CpuProgram::compile(&d.shader, &binding).map_err(|e| RenderError::Compile(e.message))?;
+        let values = evaluate_params(&cpu, &d.params, spaces, Some(frame), &[])?;
+        Ok(Some(DisplacementProgram { loaded: d, cpu, values }))
     };
+    let displacement = beside(displacement)?;
+    let atmosphere = beside(atmosphere)?;
     let bound_displacement = displacement.as_ref().map(|d| d.loaded.bound());
-    let gpu = wgsl::compile_object(&stages, bound_displacement.as_ref(), &bound, &loaded.strings)
-        .map_err(|d| RenderError::Compile(d.message))?;
+    let bound_atmosphere = atmosphere.as_ref().map(|a| a.loaded.bound());
+    let gpu = wgsl::compile_shaded(
+        &stages,
+        bound_displacement.as_ref(),
+        bound_atmosphere.as_ref(),
+        &bound,
+        &loaded.strings,
+    )
+    .map_err(|d| RenderError::Compile(d.message))?;
     let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };
     let compile = |s: &Shader| CpuProgram::compile(s, &binding).map_err(|d| RenderError::Compile(d.message));
     let host = compile(&stages.host)?;
@@ -311,7 +347,7 @@ pub fn surface_program(
     let fragment = compile(&stages.fragment)?;
     let host_outputs = host_outputs(&stages);
     let uniforms = evaluate_params(&host, &loaded.params, spaces, Some(frame), &host_outputs)?;
-    Ok(SurfaceProgram { loaded, stages, gpu, host, vertex, fragment, uniforms, displacement })
+    Ok(SurfaceProgram { loaded, stages, gpu, host, vertex, fragment, uniforms, displacement, atmosphere })
 }
 
 /// The values the host part hands to the other stages, by name.

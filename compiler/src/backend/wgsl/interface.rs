@@ -61,6 +61,11 @@ pub enum UniformSource {
         /// The parameter.
         name: String,
     },
+    /// A parameter of the bound atmosphere (volume) shader.
+    AtmosphereParam {
+        /// The parameter.
+        name: String,
+    },
     /// A matrix the vertex stage's geometry needs (column-vector convention, `v' = M v`).
     Geometry {
         /// Which.
@@ -354,6 +359,9 @@ pub struct Interface {
     pub lights: Vec<LightInterface>,
     /// The bound displacement shader, if any.
     pub displacement: Option<LightInterface>,
+    /// The bound atmosphere (volume) shader, run after the surface on its `Ci` and `Oi`, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub atmosphere: Option<LightInterface>,
     /// Whether the uniform block holds values only the host stage computes
     /// ([`UniformSource::Host`]): then the block must be filled by running the host part (the
     /// facade's `Uniforms` does); a program compiled with the host folded in has none.
@@ -381,6 +389,7 @@ impl Default for Interface {
             params: Vec::new(),
             lights: Vec::new(),
             displacement: None,
+            atmosphere: None,
             needs_host: false,
             attributes: Vec::new(),
             varyings: Vec::new(),

@@ -124,6 +124,19 @@ pub fn compile_object(
     lights: &[BoundLight],
     strings: &[(String, String)],
 ) -> Result<GpuProgram, Diagnostic> {
+    compile_shaded(stages, displacement, None, lights, strings)
+}
+
+/// As [`compile_object`], with an atmosphere (volume) shader run after the surface at each
+/// fragment: it reads the surface's `Ci`, `Oi`, `P` and `I` and its `Ci` and `Oi` are the
+/// fragment's colour and opacity (RenderMan's volume shader between the surface and the eye).
+pub fn compile_shaded(
+    stages: &Stages,
+    displacement: Option<&BoundLight>,
+    atmosphere: Option<&BoundLight>,
+    lights: &[BoundLight],
+    strings: &[(String, String)],
+) -> Result<GpuProgram, Diagnostic> {
     body::check_light_count(&stages.fragment, &lights.iter().map(|l| l.shader).collect::<Vec<_>>())?;
     let bindings: Vec<LightBinding> = lights
         .iter()
@@ -168,6 +181,24 @@ pub fn compile_object(
         }
         None => None,
     };
+    let atmosphere_function = match atmosphere {
+        Some(a) => {
+            if stages.fragment.result_local.is_some() {
+                return Err(Diagnostic::error(
+                    Code::NotExecutable,
+                    "an atmosphere shader needs a RenderMan-style surface (one that writes `Ci`)",
+                    a.shader.span,
+                    "this atmosphere",
+                ));
+            }
+            let mut t = Translator::new(&mut mb, a.shader, "a_", &[], &a.strings, "atmosphere");
+            t.block(&a.shader.body)?;
+            let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
+            drop(t);
+            Some((mb.module.functions.append(f, NSpan::UNDEFINED), a.shader))
+        }
+        None => None,
+    };
     let vertex_body = body(&mut mb, &stages.vertex, "vertex_body")?;
     let fragment_body = body(&mut mb, &stages.fragment, "fragment_body")?;
     let (attributes, varyings) = entry::entry_points(
@@ -176,7 +207,7 @@ pub fn compile_object(
         vertex_body,
         fragment_body,
         &light_functions,
-        displacement_function,
+        entry::Bound { displacement: displacement_function, atmosphere: atmosphere_function },
         strings,
     );
     let textures = mb.texture_slots();
@@ -196,7 +227,9 @@ pub fn compile_object(
             })?;
     let output = if stages.fragment.result_local.is_some() {
         Output::Result
-    } else if uses::Uses::of(&stages.fragment, &stages.fragment.body).written.contains("Oi") {
+    } else if atmosphere.is_some()
+        || uses::Uses::of(&stages.fragment, &stages.fragment.body).written.contains("Oi")
+    {
         Output::CiOi
     } else {
         Output::Ci
@@ -221,6 +254,10 @@ pub fn compile_object(
         displacement: displacement.map(|d| interface::LightInterface {
             shader: d.shader.name.to_string(),
             params: params::parameters(d.shader, &[], &d.strings),
+        }),
+        atmosphere: atmosphere.map(|a| interface::LightInterface {
+            shader: a.shader.name.to_string(),
+            params: params::parameters(a.shader, &[], &a.strings),
         }),
         attributes,
         varyings,

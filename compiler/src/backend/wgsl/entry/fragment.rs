@@ -26,9 +26,10 @@ pub(super) fn fragment_entry(
     uses: &Uses,
     crossings: &[Crossing],
     lights: &[(Handle<naga::Function>, &Shader)],
-    displacement: Option<(Handle<naga::Function>, &Shader)>,
+    bound: super::Bound,
     strings: &[(String, String)],
 ) {
+    let displacement = bound.displacement;
     let shader = &stages.fragment;
     let mut t = Translator::new(mb, shader, "", &[], strings, "fs_main");
     let f4 = t.mb.ty(Type::of(Base::Float4), false);
@@ -156,6 +157,18 @@ pub(super) fn fragment_entry(
         t.store(p, d);
     }
 
+    // The atmosphere's derivative seeds, also here at the top: those of the surface's inputs.
+    if let Some((_, a)) = bound.atmosphere {
+        for (input, axis, id) in &Uses::of(a, &a.body).seeds {
+            let Input::Global(g) = input else { continue };
+            let Some(value) = read_global(&mut t, g.name) else { continue };
+            let dv = derivative(&mut t, *axis, value);
+            let var = t.mb.private(&format!("a_{}", seed_name(a, *input, *axis)), a.expr(*id).ty);
+            let ptr = t.pointer(var);
+            t.store(ptr, dv);
+        }
+    }
+
     // Displacement, as bump mapping: the displacement shader moves P and N for the surface's
     // shading (the geometry itself does not move); its derivative seeds are the inputs'.
     if let Some((function, d)) = displacement {
@@ -260,6 +273,51 @@ pub(super) fn fragment_entry(
 
     t.fb.push(Statement::Call { function: body, arguments: Vec::new(), result: None });
 
+    // The atmosphere, between the surface and the eye: it reads the surface's results (an
+    // opaque Oi when the surface writes none) and its Ci and Oi are the fragment's.
+    let mut writes_oi = uses.written.contains("Oi");
+    if let Some((function, a)) = bound.atmosphere {
+        let prefix = "a_";
+        let a_uses = Uses::of(a, &a.body);
+        for g in &a_uses.globals {
+            let value = if g.name == "Oi" && !uses.written.contains("Oi") {
+                let one = t.float(1.0);
+                Some(t.splat(one, 3))
+            } else {
+                read_global(&mut t, g.name)
+            };
+            if let Some(value) = value {
+                let var = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
+                let ptr = t.pointer(var);
+                t.store(ptr, value);
+            }
+        }
+        init_params(&mut t, a, prefix, &|name| UniformSource::AtmosphereParam { name: name.into() });
+        t.fb.push(Statement::Call { function, arguments: Vec::new(), result: None });
+        for name in ["Ci", "Oi"] {
+            let (Some(g), Some(sg)) = (
+                crate::sema::globals::lookup(name, a.kind, a.stanford),
+                crate::sema::globals::lookup(name, shader.kind, shader.stanford),
+            ) else {
+                continue;
+            };
+            let value = if a_uses.globals.iter().any(|u| u.name == name) {
+                let src = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
+                let ptr = t.pointer(src);
+                t.load(ptr)
+            } else if name == "Oi" && !uses.written.contains("Oi") {
+                let one = t.float(1.0);
+                t.splat(one, 3)
+            } else {
+                continue;
+            };
+            let dst = t.global_var(sg.name, Type::of(sg.ty), false);
+            let dp = t.pointer(dst);
+            t.store(dp, value);
+        }
+        writes_oi = true;
+    }
+
     let color = if let Some(r) = shader.result_local {
         let var = t.local_var(r);
         let p = t.pointer(var);
@@ -268,7 +326,7 @@ pub(super) fn fragment_entry(
         let zero = t.float(0.0);
         let black = t.splat(zero, 3);
         let ci = read_global(&mut t, "Ci").unwrap_or(black);
-        let alpha = if uses.written.contains("Oi") {
+        let alpha = if writes_oi {
             let oi = read_global(&mut t, "Oi").unwrap_or(black);
             let third = t.float(1.0 / 3.0);
             let third = t.splat(third, 3);

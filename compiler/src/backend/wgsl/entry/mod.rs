@@ -80,6 +80,14 @@ pub(crate) enum Carried {
     Transfer(crate::ir::LocalId),
 }
 
+/// The shaders bound beside the surface at each fragment: a displacement run before it and an
+/// atmosphere run after it, each as its naga function and its shader.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Bound<'a> {
+    pub displacement: Option<(Handle<naga::Function>, &'a Shader)>,
+    pub atmosphere: Option<(Handle<naga::Function>, &'a Shader)>,
+}
+
 /// Builds both entry points; returns the attributes and varyings.
 pub(crate) fn entry_points(
     mb: &mut ModuleBuilder,
@@ -87,7 +95,7 @@ pub(crate) fn entry_points(
     vertex_body: Handle<naga::Function>,
     fragment_body: Handle<naga::Function>,
     lights: &[(Handle<naga::Function>, &Shader)],
-    displacement: Option<(Handle<naga::Function>, &Shader)>,
+    bound: Bound,
     strings: &[(String, String)],
 ) -> (Vec<Attribute>, Vec<Varying>) {
     let vertex_uses = Uses::of(&stages.vertex, &stages.vertex.body);
@@ -98,8 +106,9 @@ pub(crate) fn entry_points(
     let mut crossings: Vec<Crossing> = Vec::new();
     // Lights are evaluated at the surface point and orientation, and Stanford's H needs E.
     let mut carried_globals = fragment_uses.globals.clone();
-    // A displacement shader runs at the top of the fragment stage on the surface's inputs.
-    if let Some((_, d)) = displacement {
+    // A displacement shader runs at the top of the fragment stage on the surface's inputs, an
+    // atmosphere at the end on its results.
+    for (_, d) in bound.displacement.into_iter().chain(bound.atmosphere) {
         for g in Uses::of(d, &d.body).globals {
             if let Some(sg) = crate::sema::globals::lookup(g.name, surface.kind, surface.stanford)
                 && !carried_globals.iter().any(|c| c.name == sg.name)
@@ -192,16 +201,7 @@ pub(crate) fn entry_points(
         &vertex_params,
         strings,
     );
-    fragment::fragment_entry(
-        mb,
-        stages,
-        fragment_body,
-        &fragment_uses,
-        &crossings,
-        lights,
-        displacement,
-        strings,
-    );
+    fragment::fragment_entry(mb, stages, fragment_body, &fragment_uses, &crossings, lights, bound, strings);
     (attributes, varyings)
 }
 

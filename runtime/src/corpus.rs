@@ -5,8 +5,9 @@
 //! the results as a table and a contact sheet; `runtime/tests/corpus.rs` asserts them.
 //!
 //! The scenes: a surface on a unit sphere under a point and an ambient light; a light on a
-//! plastic sphere (with a dim ambient light beside it); a displacement on a plastic sphere under
-//! the point and ambient lights. Points and directions a light declares (`from`, `to`) are set
+//! plastic sphere above a plastic floor (with a dim ambient light beside it, and a shadow map
+//! made from the light when it has a `shadowname` parameter); a displacement on a plastic sphere
+//! under the point and ambient lights. Points and directions a light declares (`from`, `to`) are set
 //! above and to the left of the camera, aimed at the sphere, so that lights whose defaults sit at
 //! the origin (inside the sphere) still light what is seen.
 
@@ -264,16 +265,28 @@ pub fn scene_for(
             if params.contains(&"to") {
                 set.push("to = [0.0, 0.0, 0.0]");
             }
-            // A light at a distance falls off as 1/d² in the standard lights.
-            if params.contains(&"from") && params.contains(&"intensity") && !params.contains(&"to") {
+            // A local light falls off as 1/d² in the standard lights; a distant one does not
+            // (told by its name, as RenderMan's standard set names them).
+            if params.contains(&"from") && params.contains(&"intensity") && !name.contains("distant") {
                 set.push("intensity = 12.0");
+            }
+            // A light that names a shadow map gets one, made from the light (the floor shows it).
+            let shadowed = params.contains(&"shadowname");
+            if shadowed {
+                set.push("shadowname = \"corpus.shad\"");
             }
             text +=
                 &format!("[[light]]\nshader = {file}\nname = {name}\nparams = {{ {} }}\n\n", set.join(", "));
+            if shadowed {
+                text += "[[shadow]]\nname = \"corpus.shad\"\nlight = 0\nresolution = 256\n\n";
+            }
             if name != "\"ambientlight\"" {
                 text += ambient;
             }
             text += &plastic;
+            text += "\n[[object]]\nmesh = \"plane\"\ndetail = 4\nshader = \"<shaders.sl>\"\nname = \"plastic\"\n\
+                     color = [0.8, 0.8, 0.75]\ntransform = [{ translate = [0.0, -1.0, 0.0] }, \
+                     { rotate = { angle = 90, axis = [1.0, 0.0, 0.0] } }, { scale = [3.0, 3.0, 1.0] }]\n";
         }
         ShaderKind::Displacement => {
             text += point_light;
@@ -304,7 +317,11 @@ pub fn markdown(entries: &[Entry]) -> String {
         "| shader | kind | check | GPU | CPU | agreement | time |\n|---|---|---|---|---|---|---|\n",
     );
     for e in entries {
-        let kind = e.shader.as_ref().map_or("functions", |(_, k)| kind_name(*k));
+        let kind = match (&e.shader, e.check.worked()) {
+            (Some((_, k)), _) => kind_name(*k),
+            (None, true) => "functions",
+            (None, false) => "?",
+        };
         let agreement = match (&e.comparison, e.agrees) {
             (Some(c), Some(agrees)) => format!(
                 "{} (max {:.3}, {} of {} px over)",

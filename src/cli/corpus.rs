@@ -121,6 +121,7 @@ fn contact_sheet(entries: &[Entry], size: (u32, u32), path: &Path) -> Result<(),
                 Some(true) => "",
                 Some(false) => " (differs)",
                 None if !entry.check.worked() => " (does not check)",
+                None if entry.shader.is_none() => " (functions only)",
                 None => " (not rendered)",
             };
             let label = format!("{}{mark}", entry.file.display());

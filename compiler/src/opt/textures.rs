@@ -17,6 +17,27 @@
 //! four-corner form uses the corners' mean. Stanford's float4 coordinate is homogeneous (divided
 //! by w); its float3 one is (s, t, r), of which a 2D lookup reads (s, t).
 //!
+//! `environment(name, D)` (and the four-direction form, which looks up the directions' mean) is
+//! the same bilinear filter over a 2D texture that holds either a lat-long map or a cube map, told
+//! apart at run time by the texture's shape (`runtime/src/render/textures.rs` makes both):
+//!
+//! - a **cube map** is an atlas three faces wide and two tall (width × 2 = height × 3): faces
+//!   +X, −X, +Y in the top row, −Y, +Z, −Z in the bottom one, each F × F texels (F = width / 3).
+//!   The face is D's major axis (ties go to x, then y), chosen branch-free, and the face
+//!   coordinates are OpenGL's: (u, v) = ((sc / |ma| + 1) / 2, (tc / |ma| + 1) / 2) with (sc, tc)
+//!   = (−z, −y) on +X, (z, −y) on −X, (x, z) on +Y, (x, −z) on −Y, (x, −y) on +Z, (−x, −y) on −Z,
+//!   v = 0 the face image's top row. Texel coordinates clamp to the face (no filtering across
+//!   face edges);
+//! - anything else is a **lat-long map**, +Y up: s = ½ + atan(x, −z) / 2π (so −Z is the map's
+//!   centre column, +X three quarters across, +Z the seam), t = atan(√(x² + z²), y) / π (t = 0,
+//!   the image's top row, straight up). The filter wraps in s and clamps in t. A zero D reads
+//!   (½, ½).
+//!
+//! D need not be normalized. The filter is level 0 only: the lookup's footprint (the derivatives
+//! of D) and the `"blur"` / `"width"` options are not used yet.
+//!
+//! Optional `"name", value` pairs after a lookup's positional arguments are skipped here.
+//!
 //! Runs after `opt::derivs` (texture lookups carry no derivatives through it) and before the
 //! split; rewrites each lookup in place, appending the expressions it needs, all at the lookup's
 //! rate.
@@ -26,26 +47,36 @@ use crate::ir::types::{Base, Type};
 use crate::ir::{BinaryOp, ExprId, ExprKind, Shader};
 use crate::sema::globals;
 
-/// Rewrites every `texture` and `texture3d` lookup of `shader` into texel fetches and arithmetic.
+/// Rewrites every `texture`, `texture3d` and `environment` lookup of `shader` into texel fetches
+/// and arithmetic.
 pub fn expand(shader: &mut Shader) {
     let lookups: Vec<ExprId> = (0..shader.exprs.len() as u32)
         .map(ExprId)
-        .filter(|id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if matches!(b.name, "texture" | "texture3d")))
+        .filter(|id| {
+            matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _)
+                if matches!(b.name, "texture" | "texture3d" | "environment"))
+        })
         .collect();
     for id in lookups {
         let span = shader.expr(id).span;
-        let (args, three_d) = match &shader.expr(id).kind {
-            ExprKind::Builtin(b, args) => (args.clone(), b.name == "texture3d"),
+        let (args, name) = match &shader.expr(id).kind {
+            // Only the positional arguments: optional "name", value pairs may follow them.
+            ExprKind::Builtin(b, args) => (args[..b.params.len().min(args.len())].to_vec(), b.name),
             _ => continue,
         };
+        let three_d = name == "texture3d";
         let ret = shader.expr(id).ty;
         let rate = shader.expr(id).rate;
         let first_new = shader.exprs.len();
         let mut b = Builder::new(shader, span);
-        let Some(coords) = coordinates(&mut b, &args, three_d) else { continue };
         let texture = args[0];
-        let rgba =
-            if three_d { filter3(&mut b, texture, &coords) } else { filter2(&mut b, texture, &coords) };
+        let rgba = if name == "environment" {
+            let Some(direction) = environment_direction(&mut b, &args) else { continue };
+            environment(&mut b, texture, direction)
+        } else {
+            let Some(coords) = coordinates(&mut b, &args, three_d) else { continue };
+            if three_d { filter3(&mut b, texture, &coords) } else { filter2(&mut b, texture, &coords) }
+        };
         let value = match ret.base {
             Base::Float => b.index(rgba, 0),
             Base::Color => {
@@ -101,7 +132,7 @@ fn coordinates(b: &mut Builder, args: &[ExprId], three_d: bool) -> Option<Vec<Ex
 
 /// Integer coordinates of the two texels around `coord` along an axis of `size` texels, and the
 /// weight of the second.
-fn axis(
+pub(crate) fn axis(
     b: &mut Builder,
     texture: ExprId,
     which: i32,
@@ -125,7 +156,7 @@ fn axis(
 }
 
 /// `((i % n) + n) % n`: a coordinate wrapped into [0, n).
-fn wrap(b: &mut Builder, i: ExprId, n: ExprId) -> ExprId {
+pub(crate) fn wrap(b: &mut Builder, i: ExprId, n: ExprId) -> ExprId {
     let r = b.binary(BinaryOp::Rem, i, n);
     let r = b.binary(BinaryOp::Add, r, n);
     b.binary(BinaryOp::Rem, r, n)
@@ -135,14 +166,155 @@ fn mix(b: &mut Builder, x: ExprId, y: ExprId, t: ExprId) -> ExprId {
     b.call("mix", vec![x, y, t])
 }
 
-fn filter2(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {
+/// The bilinear filter of a 2D texture at (s, t) = (`c[0]`, `c[1]`), wrapping on both axes: the
+/// RGBA `float4`.
+pub(crate) fn filter2(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {
     let (x0, x1, fx) = axis(b, texture, 0, c[0], false);
     let (y0, y1, fy) = axis(b, texture, 1, c[1], false);
+    bilinear(b, texture, [x0, x1, fx], [y0, y1, fy])
+}
+
+/// The texel coordinates (unwrapped, unclamped) of the two texels around `coord` along an axis of
+/// `size` texels, and the weight of the second: x = coord * size - ½, i0 = floor(x), i1 = i0 + 1.
+pub(crate) fn split(b: &mut Builder, coord: ExprId, size: ExprId) -> (ExprId, ExprId, ExprId) {
+    let half = b.float(0.5);
+    let scaled = b.binary(BinaryOp::Mul, coord, size);
+    let x = b.binary(BinaryOp::Sub, scaled, half);
+    let x0 = b.call("floor", vec![x]);
+    let fraction = b.binary(BinaryOp::Sub, x, x0);
+    let i0 = b.convert(x0, Type::INT);
+    let one = b.int(1);
+    let i1 = b.binary(BinaryOp::Add, i0, one);
+    (i0, i1, fraction)
+}
+
+/// The bilinear blend of the four texels at integer coordinates `x[0..2]` × `y[0..2]`, with the
+/// weights `x[2]`, `y[2]` of the second of each pair.
+pub(crate) fn bilinear(b: &mut Builder, texture: ExprId, x: [ExprId; 3], y: [ExprId; 3]) -> ExprId {
+    let ([x0, x1, fx], [y0, y1, fy]) = (x, y);
     let mut texel = |x, y| b.call("__texel2d", vec![texture, x, y]);
     let (c00, c10, c01, c11) = (texel(x0, y0), texel(x1, y0), texel(x0, y1), texel(x1, y1));
     let top = mix(b, c00, c10, fx);
     let bottom = mix(b, c01, c11, fx);
     mix(b, top, bottom, fy)
+}
+
+/// The direction of an environment lookup: D, or the mean of the four directions.
+fn environment_direction(b: &mut Builder, args: &[ExprId]) -> Option<ExprId> {
+    match args.len() {
+        2 => Some(args[1]),
+        5 => {
+            let ab = b.binary(BinaryOp::Add, args[1], args[2]);
+            let cd = b.binary(BinaryOp::Add, args[3], args[4]);
+            let sum = b.binary(BinaryOp::Add, ab, cd);
+            let quarter = b.float(0.25);
+            Some(b.binary(BinaryOp::Mul, sum, quarter))
+        }
+        _ => None,
+    }
+}
+
+/// The environment lookup along `d` (module documentation): a lat-long or a cube-map atlas,
+/// chosen by the texture's shape, filtered bilinearly; the RGBA `float4`.
+fn environment(b: &mut Builder, texture: ExprId, d: ExprId) -> ExprId {
+    let (x, y, z) = (b.index(d, 0), b.index(d, 1), b.index(d, 2));
+    let zero_f = b.float(0.0);
+    let half = b.float(0.5);
+    let one_f = b.float(1.0);
+    let (zero, one, two, three) = (b.int(0), b.int(1), b.int(2), b.int(3));
+    let w = b.call("__texsize2d", vec![texture, zero]);
+    let h = b.call("__texsize2d", vec![texture, one]);
+    let w2 = b.binary(BinaryOp::Mul, w, two);
+    let h3 = b.binary(BinaryOp::Mul, h, three);
+    let is_cube = b.binary(BinaryOp::Eq, w2, h3);
+
+    // Lat-long coordinates.
+    let xx = b.binary(BinaryOp::Mul, x, x);
+    let zz = b.binary(BinaryOp::Mul, z, z);
+    let r2 = b.binary(BinaryOp::Add, xx, zz);
+    let yy = b.binary(BinaryOp::Mul, y, y);
+    let len2 = b.binary(BinaryOp::Add, r2, yy);
+    let around = b.binary(BinaryOp::Gt, r2, zero_f);
+    let nonzero = b.binary(BinaryOp::Gt, len2, zero_f);
+    let minus_z = b.neg(z);
+    let azimuth = b.call("atan", vec![x, minus_z]);
+    let inv_two_pi = b.float(1.0 / (2.0 * std::f64::consts::PI));
+    let s = b.binary(BinaryOp::Mul, azimuth, inv_two_pi);
+    let s = b.binary(BinaryOp::Add, s, half);
+    let s = b.select(around, s, half);
+    let r = b.call("sqrt", vec![r2]);
+    let polar = b.call("atan", vec![r, y]);
+    let inv_pi = b.float(1.0 / std::f64::consts::PI);
+    let t = b.binary(BinaryOp::Mul, polar, inv_pi);
+    let t = b.select(nonzero, t, half);
+
+    // Cube-map face and face coordinates.
+    let (ax, ay, az) = (b.call("abs", vec![x]), b.call("abs", vec![y]), b.call("abs", vec![z]));
+    let x_ge_y = b.binary(BinaryOp::Ge, ax, ay);
+    let x_ge_z = b.binary(BinaryOp::Ge, ax, az);
+    let x_major = b.binary(BinaryOp::And, x_ge_y, x_ge_z);
+    let y_major = b.binary(BinaryOp::Ge, ay, az);
+    let x_pos = b.binary(BinaryOp::Ge, x, zero_f);
+    let y_pos = b.binary(BinaryOp::Ge, y, zero_f);
+    let z_pos = b.binary(BinaryOp::Ge, z, zero_f);
+    let minus_x = b.neg(x);
+    let minus_y = b.neg(y);
+    let pick = |b: &mut Builder, on_x: ExprId, on_y: ExprId, on_z: ExprId| {
+        let yz = b.select(y_major, on_y, on_z);
+        b.select(x_major, on_x, yz)
+    };
+    // Face index: +X 0, -X 1, +Y 2, -Y 3, +Z 4, -Z 5.
+    let (f0, f1, f2, f3, f4, f5) = (zero, one, two, three, b.int(4), b.int(5));
+    let fx = b.select(x_pos, f0, f1);
+    let fy = b.select(y_pos, f2, f3);
+    let fz = b.select(z_pos, f4, f5);
+    let face = pick(b, fx, fy, fz);
+    let scx = b.select(x_pos, minus_z, z);
+    let scz = b.select(z_pos, x, minus_x);
+    let sc = pick(b, scx, x, scz);
+    let tcy = b.select(y_pos, z, minus_z);
+    let tc = pick(b, minus_y, tcy, minus_y);
+    let major = pick(b, ax, ay, az);
+    let tiny = b.float(1e-30);
+    let major = b.call("max", vec![major, tiny]);
+    let to_unit = |b: &mut Builder, c: ExprId| {
+        let q = b.binary(BinaryOp::Div, c, major);
+        let q = b.binary(BinaryOp::Add, q, one_f);
+        b.binary(BinaryOp::Mul, q, half)
+    };
+    let u = to_unit(b, sc);
+    let v = to_unit(b, tc);
+    let size = b.binary(BinaryOp::Div, w, three);
+    let column = b.binary(BinaryOp::Rem, face, three);
+    let row = b.binary(BinaryOp::Div, face, three);
+    let ox = b.binary(BinaryOp::Mul, column, size);
+    let oy = b.binary(BinaryOp::Mul, row, size);
+
+    // One filter: lat-long (s wraps over the width, t clamps to the height) or the face's square.
+    let s = b.select(is_cube, u, s);
+    let t = b.select(is_cube, v, t);
+    let across = b.select(is_cube, size, w);
+    let down = b.select(is_cube, size, h);
+    let across_f = b.convert(across, Type::FLOAT);
+    let down_f = b.convert(down, Type::FLOAT);
+    let (x0, x1, wx) = split(b, s, across_f);
+    let (y0, y1, wy) = split(b, t, down_f);
+    let last_across = b.binary(BinaryOp::Sub, across, one);
+    let last_down = b.binary(BinaryOp::Sub, down, one);
+    let column_of = |b: &mut Builder, i: ExprId| {
+        let clamped = b.call("clamp", vec![i, zero, last_across]);
+        let in_face = b.binary(BinaryOp::Add, clamped, ox);
+        let wrapped = wrap(b, i, w);
+        b.select(is_cube, in_face, wrapped)
+    };
+    let row_of = |b: &mut Builder, i: ExprId| {
+        let clamped = b.call("clamp", vec![i, zero, last_down]);
+        let in_face = b.binary(BinaryOp::Add, clamped, oy);
+        b.select(is_cube, in_face, clamped)
+    };
+    let (x0, x1) = (column_of(b, x0), column_of(b, x1));
+    let (y0, y1) = (row_of(b, y0), row_of(b, y1));
+    bilinear(b, texture, [x0, x1, wx], [y0, y1, wy])
 }
 
 fn filter3(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {

@@ -18,7 +18,26 @@
 //!   r = 0.24, w = 1 and (0.64, 0.6, 0.56) with r = 0.17, w = 0.9 — and a spherical shell
 //!   0.55 max(0, 1 − ((d − 0.36)/0.06)²) about (0.5, 0.5, 0.5); the texel is (ρ, ρ, ρ, 1). Every
 //!   part is 0 within 0.08 of the unit cube's faces, so a lookup that wraps (`repeat`) at the
-//!   border reads 0 there.
+//!   border reads 0 there;
+//! - `sky:N`: a lat-long environment map (the `environment` lookup's layout, compiler/src/opt/
+//!   textures.rs), 2N × N texels (default 64). Texel (x, y) holds the direction D of its centre,
+//!   φ = 2π ((x + ½) / 2N − ½), θ = π (y + ½) / N, D = (sin θ sin φ, cos θ, −sin θ cos φ). Above
+//!   the horizon (D.y ≥ 0) a gradient from the horizon's (0.85, 0.9, 1) to the zenith's
+//!   (0.15, 0.35, 0.8), horizon + (zenith − horizon) D.y, except the sun: where D · S ≥ cos 6°,
+//!   S = (1, 1, −1) / √3, the texel is (4, 3.6, 3). Below, a ground of 16 × 8 checks in (s, t) =
+//!   (φ / 2π + ½, θ / π): (0.45, 0.4, 0.32) where ⌊16 s⌋ + ⌊8 t⌋ is even, (0.12, 0.1, 0.08)
+//!   where odd. Alpha 1. Computed in f64 and rounded once;
+//! - `skycube:N`: the same sky as a cube map of N × N faces (default 32): an atlas 3N × 2N, faces
+//!   +X, −X, +Y in the top row and −Y, +Z, −Z below, face texel (i, j) the sky along the
+//!   direction of its centre (sc, tc) = (2 (i + ½) / N − 1, 2 (j + ½) / N − 1) in OpenGL's face
+//!   axes (+X: (1, −tc, −sc), −X: (−1, −tc, sc), +Y: (sc, 1, tc), −Y: (sc, −1, −tc),
+//!   +Z: (sc, −tc, 1), −Z: (−sc, −tc, −1));
+//! - `cube:A,B,C,D,E,F`: a cube map from six square images of one size (files as below), in the
+//!   order +X, −X, +Y, −Y, +Z, −Z, packed into that atlas.
+//!
+//! Any other name is a file relative to the scene's directory: PNG (8 or 16 bits), or Radiance
+//! HDR (`.hdr`, kept in linear floats). An environment lookup reads a texture three texels wide
+//! for every two tall as a cube-map atlas and any other one as a lat-long map (2:1).
 
 use std::path::Path;
 use std::sync::Arc;
@@ -102,12 +121,123 @@ pub fn load(name: &str, base: &Path) -> Result<Texture, RenderError> {
                 .collect::<Vec<_>>();
             Ok(Texture { size: [n, n, n], texels: Arc::from(texels) })
         }
-        _ => {
-            let path = base.join(name);
-            let image = crate::image::Image::read_png(&path)
-                .map_err(|e| RenderError::Input(format!("texture `{name}`: {e}")))?;
-            Ok(Texture { size: [image.width, image.height, 1], texels: Arc::from(image.pixels) })
+        "sky" => {
+            let n = count(spec, 64)?;
+            let texels = (0..2 * n * n)
+                .map(|i| {
+                    let (x, y) = (i % (2 * n), i / (2 * n));
+                    let phi = std::f64::consts::TAU * ((f64::from(x) + 0.5) / f64::from(2 * n) - 0.5);
+                    let theta = std::f64::consts::PI * (f64::from(y) + 0.5) / f64::from(n);
+                    let d = [theta.sin() * phi.sin(), theta.cos(), -theta.sin() * phi.cos()];
+                    sky_texel(d).map(|c| c as f32)
+                })
+                .collect::<Vec<_>>();
+            Ok(Texture { size: [2 * n, n, 1], texels: Arc::from(texels) })
         }
+        "skycube" => {
+            let n = count(spec, 32)?;
+            let faces: Vec<Vec<[f32; 4]>> = (0..6)
+                .map(|face| {
+                    (0..n * n)
+                        .map(|i| {
+                            let centre = |k: u32| 2.0 * (f64::from(k) + 0.5) / f64::from(n) - 1.0;
+                            sky_texel(face_direction(face, centre(i % n), centre(i / n))).map(|c| c as f32)
+                        })
+                        .collect()
+                })
+                .collect();
+            Ok(atlas(n, &faces))
+        }
+        "cube" => {
+            let files: Vec<&str> = spec.unwrap_or("").split(',').map(str::trim).collect();
+            if files.len() != 6 || files.iter().any(|f| f.is_empty()) {
+                return Err(RenderError::Input(format!(
+                    "texture `{name}`: a cube map names six images, +X, -X, +Y, -Y, +Z, -Z, separated by commas"
+                )));
+            }
+            let mut faces = Vec::new();
+            let mut size = None;
+            for file in files {
+                let face = read_file(file, base)?;
+                let [w, h, _] = face.size;
+                if w != h || size.is_some_and(|s| s != w) {
+                    return Err(RenderError::Input(format!(
+                        "texture `{name}`: the faces must be square and of one size (`{file}` is {w}x{h})"
+                    )));
+                }
+                size = Some(w);
+                faces.push(face.texels.to_vec());
+            }
+            Ok(atlas(size.unwrap_or(1), &faces))
+        }
+        _ => read_file(name, base),
+    }
+}
+
+/// A texture file relative to `base`: Radiance HDR by its `.hdr` extension (linear floats), else
+/// PNG.
+fn read_file(name: &str, base: &Path) -> Result<Texture, RenderError> {
+    let path = base.join(name);
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("hdr")) {
+        let error = |e: String| RenderError::Input(format!("texture `{name}`: {}: {e}", path.display()));
+        let decoded = image::ImageReader::open(&path)
+            .map_err(|e| error(e.to_string()))?
+            .with_guessed_format()
+            .map_err(|e| error(e.to_string()))?
+            .decode()
+            .map_err(|e| error(e.to_string()))?;
+        let (w, h) = (decoded.width(), decoded.height());
+        let texels: Vec<[f32; 4]> = decoded.to_rgba32f().pixels().map(|p| p.0).collect();
+        return Ok(Texture { size: [w, h, 1], texels: Arc::from(texels) });
+    }
+    let image = crate::image::Image::read_png(&path)
+        .map_err(|e| RenderError::Input(format!("texture `{name}`: {e}")))?;
+    Ok(Texture { size: [image.width, image.height, 1], texels: Arc::from(image.pixels) })
+}
+
+/// Six n × n faces (+X, −X, +Y, −Y, +Z, −Z) packed into the 3n × 2n cube-map atlas.
+fn atlas(n: u32, faces: &[Vec<[f32; 4]>]) -> Texture {
+    let (w, h) = (3 * n, 2 * n);
+    let texels = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let face = (y / n * 3 + x / n) as usize;
+            faces[face][((y % n) * n + x % n) as usize]
+        })
+        .collect::<Vec<_>>();
+    Texture { size: [w, h, 1], texels: Arc::from(texels) }
+}
+
+/// The direction of face coordinates (sc, tc) on cube face `face` (+X, −X, +Y, −Y, +Z, −Z), in
+/// OpenGL's face axes.
+fn face_direction(face: u32, sc: f64, tc: f64) -> [f64; 3] {
+    match face {
+        0 => [1.0, -tc, -sc],
+        1 => [-1.0, -tc, sc],
+        2 => [sc, 1.0, tc],
+        3 => [sc, -1.0, -tc],
+        4 => [sc, -tc, 1.0],
+        _ => [-sc, -tc, -1.0],
+    }
+}
+
+/// The `sky` environment along `d` (any length; the module documentation gives the formula).
+pub(crate) fn sky_texel(d: [f64; 3]) -> [f64; 4] {
+    let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-300);
+    let d = d.map(|c| c / length);
+    if d[1] >= 0.0 {
+        let sun = (d[0] - d[2] + d[1]) / 3f64.sqrt();
+        if sun >= 6f64.to_radians().cos() {
+            return [4.0, 3.6, 3.0, 1.0];
+        }
+        let (horizon, zenith) = ([0.85, 0.9, 1.0], [0.15, 0.35, 0.8]);
+        let c = |k: usize| horizon[k] + (zenith[k] - horizon[k]) * d[1];
+        [c(0), c(1), c(2), 1.0]
+    } else {
+        let s = d[0].atan2(-d[2]) / std::f64::consts::TAU + 0.5;
+        let t = (d[0].hypot(d[2])).atan2(d[1]) / std::f64::consts::PI;
+        let check = ((16.0 * s).floor() as i64 + (8.0 * t).floor() as i64).rem_euclid(2);
+        if check == 0 { [0.45, 0.4, 0.32, 1.0] } else { [0.12, 0.1, 0.08, 1.0] }
     }
 }
 
@@ -167,6 +297,37 @@ mod tests {
         assert!(load("banks:8:-1", base).is_err());
         assert!(load("banks:8:x", base).is_err());
         assert!(load("missing.png", base).is_err());
+        assert!(load("missing.hdr", base).is_err());
+        assert!(load("sky:0", base).is_err());
+        assert!(load("cube:a.png,b.png", base).is_err());
+        assert!(load("cube:a.png,b.png,c.png,d.png,e.png,f.png", base).is_err());
+    }
+
+    #[test]
+    fn sky_maps_hold_the_sky_along_their_texel_centres() {
+        let base = Path::new(".");
+        let sky = load("sky:16", base).unwrap();
+        assert_eq!(sky.size, [32, 16, 1]);
+        // The top rows are sky near the zenith, the bottom ones ground checks.
+        let top = sky.texels[0];
+        assert!(top[2] < 0.81 && top[2] > 0.79 && top[0] < 0.2, "{top:?}");
+        let bottom = sky.texels[(15 * 32) as usize];
+        assert!(bottom == [0.45, 0.4, 0.32, 1.0] || bottom == [0.12, 0.1, 0.08, 1.0], "{bottom:?}");
+        // The sun, S = (1, 1, -1)/√3: s = atan(1, 1)/2π + ½ = 0.625, t = acos(1/√3)/π = 0.304:
+        // texel (80, 19) of sky:64, whose centre is 1.1° from S.
+        let large = load("sky:64", base).unwrap();
+        assert_eq!(large.texels[(19 * 128 + 80) as usize], [4.0, 3.6, 3.0, 1.0]);
+        assert_ne!(large.texels[(19 * 128 + 90) as usize], [4.0, 3.6, 3.0, 1.0]);
+        // The cube map's face texels agree with the formula along their own directions.
+        let cube = load("skycube:4", base).unwrap();
+        assert_eq!(cube.size, [12, 8, 1]);
+        // +Y face (top row, third), texel (1, 2): sc = -0.25, tc = 0.25, D = (-0.25, 1, 0.25).
+        let texel = cube.texels[(2 * 12 + 8 + 1) as usize];
+        assert_eq!(texel, sky_texel([-0.25, 1.0, 0.25]).map(|c| c as f32));
+        // -Z face (bottom row, third), texel (0, 3): sc = -0.75, tc = 0.75, D = (0.75, -0.75, -1):
+        // below the horizon.
+        let texel = cube.texels[(7 * 12 + 8) as usize];
+        assert!(texel == [0.45, 0.4, 0.32, 1.0] || texel == [0.12, 0.1, 0.08, 1.0], "{texel:?}");
     }
 
     #[test]

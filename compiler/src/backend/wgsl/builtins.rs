@@ -321,7 +321,7 @@ impl Translator<'_> {
                     ),
                 ));
             }
-            "texture" | "texture3d" => {
+            "texture" | "texture3d" | "environment" => {
                 return Err(super::internal(
                     span,
                     format!(
@@ -330,14 +330,14 @@ impl Translator<'_> {
                     ),
                 ));
             }
-            "environment" | "shadow" => {
+            "shadow" => {
                 return Err(Diagnostic::error(
                     Code::NotExecutable,
                     format!("`{}` is not available on the GPU yet", b.name),
                     span,
                     "texture lookup",
                 )
-                .with_note("environment and shadow maps have no implementation on either backend yet"));
+                .with_note("shadow maps have no implementation on either backend yet"));
             }
             _ => {
                 return Err(

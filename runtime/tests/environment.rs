@@ -1,0 +1,193 @@
+//! Environment maps on both backends: a lookup along the direction of a texel's centre reads that
+//! texel of the generated maps (`sky:N` lat-long, `skycube:N` cube atlas), whose values this test
+//! computes itself from the formula documented in runtime/src/render/textures.rs; the float
+//! overload reads the first channel and the four-direction form the directions' mean. The GPU
+//! half needs an adapter (lavapipe in CI) unless `PATINA_GPU=off`.
+
+use std::f64::consts::{PI, TAU};
+
+use patina_runtime::gpu::Gpu;
+use patina_runtime::image::Image;
+use patina_runtime::render::{self, Backend};
+use patina_runtime::scene::Scene;
+
+/// The probe: a surface whose colour is the lookup along the uniform (dx, dy, dz), in the
+/// colour, float and four-direction forms.
+const PROBE: &str = "surface probe(string map = \"sky:16\"; float dx = 0; float dy = 1; float dz = 0;
+    float form = 0)
+{
+    vector D = vector(dx, dy, dz);
+    vector a = vector(0.3, -0.2, 0.1);
+    vector b = vector(-0.1, 0.25, 0.2);
+    color c = color environment(map, D);
+    if (form == 1)
+        c = color(float environment(map, D));
+    else if (form == 2)
+        c = color environment(map, D + a, D - a, D + b, D - b);
+    Ci = c;
+    Oi = 1;
+}
+";
+
+/// The sky of `sky:N` along `d`, as documented, in f64.
+fn sky(d: [f64; 3]) -> [f64; 3] {
+    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    let d = d.map(|c| c / l);
+    if d[1] >= 0.0 {
+        if (d[0] + d[1] - d[2]) / 3f64.sqrt() >= 6f64.to_radians().cos() {
+            return [4.0, 3.6, 3.0];
+        }
+        let (h, z) = ([0.85, 0.9, 1.0], [0.15, 0.35, 0.8]);
+        [0, 1, 2].map(|k| h[k] + (z[k] - h[k]) * d[1])
+    } else {
+        let s = d[0].atan2(-d[2]) / TAU + 0.5;
+        let t = d[0].hypot(d[2]).atan2(d[1]) / PI;
+        if ((16.0 * s).floor() as i64 + (8.0 * t).floor() as i64) % 2 == 0 {
+            [0.45, 0.4, 0.32]
+        } else {
+            [0.12, 0.1, 0.08]
+        }
+    }
+}
+
+/// The direction of the centre of texel (x, y) of a 2n × n lat-long map.
+fn latlong_centre(x: u32, y: u32, n: u32) -> [f64; 3] {
+    let phi = TAU * ((f64::from(x) + 0.5) / f64::from(2 * n) - 0.5);
+    let theta = PI * (f64::from(y) + 0.5) / f64::from(n);
+    [theta.sin() * phi.sin(), theta.cos(), -theta.sin() * phi.cos()]
+}
+
+/// The direction of the centre of texel (i, j) of face `face` (+X, -X, +Y, -Y, +Z, -Z) of an
+/// n × n cube map, in OpenGL's face axes.
+fn cube_centre(face: u32, i: u32, j: u32, n: u32) -> [f64; 3] {
+    let (sc, tc) =
+        (2.0 * (f64::from(i) + 0.5) / f64::from(n) - 1.0, 2.0 * (f64::from(j) + 0.5) / f64::from(n) - 1.0);
+    match face {
+        0 => [1.0, -tc, -sc],
+        1 => [-1.0, -tc, sc],
+        2 => [sc, 1.0, tc],
+        3 => [sc, -1.0, -tc],
+        4 => [sc, -tc, 1.0],
+        _ => [-sc, -tc, -1.0],
+    }
+}
+
+/// A scene of one sphere filling the middle of an 8 × 8 image, shaded by the probe.
+fn probe_scene(map: &str, d: [f64; 3], form: u32) -> Scene {
+    // A directory per scene: the tests run in parallel.
+    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let k = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("patina-environment-{}-{k}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("probe.sl"), PROBE).unwrap();
+    let text = format!(
+        "[output]\nwidth = 8\nheight = 8\nbackground = [0.0, 0.0, 0.0, 1.0]\n\
+         [camera]\nfrom = [0.0, 0.0, -4.0]\nto = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov = 20\n\
+         [[object]]\nmesh = \"sphere\"\ndetail = 16\nshader = \"probe.sl\"\n\
+         params = {{ map = \"{map}\", dx = {:?}, dy = {:?}, dz = {:?}, form = {form} }}\n",
+        d[0], d[1], d[2]
+    );
+    Scene::parse(&text, dir.join("probe.toml"), &dir).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The centre pixel of the probe's image on `backend`.
+fn probe(map: &str, d: [f64; 3], form: u32, backend: Backend, gpu: Option<&Gpu>) -> [f32; 4] {
+    let prepared = render::prepare(&probe_scene(map, d, form)).unwrap_or_else(|e| panic!("{e}"));
+    let image: Image = render::render(&prepared, backend, gpu).unwrap_or_else(|e| panic!("{e}"));
+    image.pixels[(4 * image.width + 4) as usize]
+}
+
+/// The lookups along `cases` (label, map, direction, form, expected RGB) on the CPU and, when
+/// there is one, the GPU; returns the largest error seen on each.
+fn check(cases: &[(String, &str, [f64; 3], u32, [f64; 3])]) -> (f64, f64) {
+    let gpu = patina_runtime::gpu::for_tests();
+    let mut worst = (0.0f64, 0.0f64);
+    for (label, map, d, form, expected) in cases {
+        let mut backends = vec![(Backend::Cpu, None)];
+        if let Some(g) = gpu.as_ref() {
+            backends.push((Backend::Gpu, Some(g)));
+        }
+        for (backend, g) in backends {
+            let got = probe(map, *d, *form, backend, g);
+            let error = (0..3).map(|k| (f64::from(got[k]) - expected[k]).abs()).fold(0.0, f64::max);
+            assert!(error < 2e-3, "{label} on {backend:?}: {got:?}, expected {expected:?}");
+            let w = if backend == Backend::Cpu { &mut worst.0 } else { &mut worst.1 };
+            *w = w.max(error);
+        }
+    }
+    worst
+}
+
+#[test]
+fn a_lookup_along_a_texel_centre_reads_that_texel_of_a_lat_long_map() {
+    let n = 16;
+    // Sky near the zenith, sky near the horizon, ground checks of both colours, a column beside
+    // the seam (s wraps there) and the sun (above 1: nothing is clamped).
+    let texels = [(5, 1), (27, 6), (20, 12), (21, 12), (0, 10), (31, 14), (10, 15)];
+    let mut cases: Vec<_> = texels
+        .iter()
+        .map(|&(x, y)| {
+            (
+                format!("sky:16 texel ({x}, {y})"),
+                "sky:16",
+                latlong_centre(x, y, n),
+                0,
+                sky(latlong_centre(x, y, n)),
+            )
+        })
+        .collect();
+    // Texel (80, 19) of sky:64 is in the sun (runtime/src/render/textures.rs).
+    cases.push(("sky:64 sun".into(), "sky:64", latlong_centre(80, 19, 64), 0, [4.0, 3.6, 3.0]));
+    // Float form: the first channel; four directions: their mean, D; a direction's length
+    // does not matter.
+    let d = latlong_centre(20, 12, n);
+    let red = sky(d)[0];
+    cases.push(("float form".into(), "sky:16", d, 1, [red; 3]));
+    cases.push(("four directions".into(), "sky:16", d, 2, sky(d)));
+    cases.push(("unnormalized".into(), "sky:16", d.map(|c| c * 7.5), 0, sky(d)));
+    for (label, _, _, _, e) in &cases {
+        println!("{label}: expected {e:?}");
+    }
+    let (cpu, gpu) = check(&cases);
+    println!("lat-long: worst error CPU {cpu:.2e}, GPU {gpu:.2e}");
+}
+
+#[test]
+fn a_lookup_along_a_texel_centre_reads_that_texel_of_each_cube_face() {
+    let n = 16;
+    let texels = [(0, 3, 10), (1, 12, 2), (2, 5, 9), (3, 14, 0), (4, 7, 13), (5, 1, 6)];
+    let cases: Vec<_> = texels
+        .iter()
+        .map(|&(f, i, j)| {
+            let d = cube_centre(f, i, j, n);
+            (format!("skycube:16 face {f} texel ({i}, {j})"), "skycube:16", d, 0, sky(d))
+        })
+        .collect();
+    let (cpu, gpu) = check(&cases);
+    println!("cube: worst error CPU {cpu:.2e}, GPU {gpu:.2e}");
+}
+
+#[test]
+fn a_zero_direction_reads_the_lat_long_centre_and_bad_names_are_one_error() {
+    // D = 0 reads (s, t) = (1/2, 1/2): between the four texels about the map's centre, where the
+    // sky meets the ground at -Z, on both backends alike.
+    let cpu = probe("sky:16", [0.0; 3], 0, Backend::Cpu, None);
+    let centre = |x: u32, y: u32| sky(latlong_centre(x, y, 16));
+    let mean: Vec<f64> = (0..3)
+        .map(|k| (centre(15, 7)[k] + centre(16, 7)[k] + centre(15, 8)[k] + centre(16, 8)[k]) / 4.0)
+        .collect();
+    for k in 0..3 {
+        assert!((f64::from(cpu[k]) - mean[k]).abs() < 1e-3, "{cpu:?} vs {mean:?}");
+    }
+    if let Some(g) = patina_runtime::gpu::for_tests() {
+        let gpu = probe("sky:16", [0.0; 3], 0, Backend::Gpu, Some(&g));
+        assert!((0..3).all(|k| (gpu[k] - cpu[k]).abs() < 1e-4), "{gpu:?} vs {cpu:?}");
+    }
+    for bad in ["cube:a.png", "sky:0", "missing.hdr"] {
+        let message = match render::prepare(&probe_scene(bad, [0.0, 1.0, 0.0], 0)) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("{bad} loaded"),
+        };
+        assert!(message.contains(bad) && !message.contains('\n'), "{bad}: {message}");
+    }
+}

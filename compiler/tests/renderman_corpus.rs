@@ -30,3 +30,49 @@ fn stanford_keywords_stay_keywords_in_stanford_files() {
     let (errors, _, text) = run("surface shader float4 s(float int = 1) { return float4(1, 1, 1, 1); }\n");
     assert_eq!(errors.first(), Some(&"E0306"), "{text}");
 }
+
+#[test]
+fn texture_options_are_checked_and_kept_after_the_positional_arguments() {
+    let src = "light spot(string map = \"m.shad\") {\n    illuminate(point(0, 0, 0)) {\n        Cl = shadow(map, Ps, \"samples\", 4, \"blur\", 0.01, \"bias\", 0.1);\n    }\n}\n";
+    let checked = check_source("shader.sl", src, &MemoryLoader::default());
+    let text = render_text(&checked.sources, &checked.diagnostics.iter().cloned().collect::<Vec<_>>());
+    assert!(!checked.has_errors(), "{text}");
+    assert!(checked.diagnostics.iter().next().is_none(), "every option is honoured: {text}");
+    let shader = &checked.program.shaders[0];
+    let call = shader
+        .exprs
+        .iter()
+        .find_map(|e| match &e.kind {
+            patina_compiler::ir::ExprKind::Builtin(b, args) if b.name == "shadow" => Some((b, args.clone())),
+            _ => None,
+        })
+        .expect("a shadow call");
+    assert_eq!(call.0.params.len(), 2);
+    assert_eq!(call.1.len(), 8);
+    let names: Vec<String> = call.1[2..]
+        .iter()
+        .step_by(2)
+        .map(|&a| match &shader.expr(a).kind {
+            patina_compiler::ir::ExprKind::Literal(patina_compiler::ir::Literal::String(s)) => s.to_string(),
+            other => format!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(names, ["samples", "blur", "bias"]);
+    assert_eq!(shader.expr(call.1[3]).ty, patina_compiler::ir::types::Type::FLOAT);
+}
+
+#[test]
+fn texture_options_not_honoured_or_unknown_are_warnings_and_wrong_types_errors() {
+    let src = "surface s(string map = \"a.tx\") {\n    Ci = color texture(map, s, t, \"blur\", 0.1, \"filter\", \"gaussian\", \"wobble\", 2);\n}\n";
+    let (errors, warnings, text) = run(src);
+    assert!(errors.is_empty(), "{text}");
+    assert_eq!(warnings.len(), 2, "{text}");
+    assert!(warnings[0].contains("no option `wobble`"), "{text}");
+    assert!(warnings[1].contains("ignores the options `blur`, `filter`"), "{text}");
+    assert!(text.contains("the options of `texture` are `blur`, `width`"), "{text}");
+    let (errors, _, text) =
+        run("surface s() {\n    Ci = environment(\"e.env\", I, \"blur\", \"wide\");\n}\n");
+    assert_eq!(errors, ["E0505"], "{text}");
+    let (errors, _, text) = run("surface s() {\n    Ci = environment(\"e.env\", I, \"blur\");\n}\n");
+    assert_eq!(errors, ["E0522"], "{text}");
+}

@@ -1262,3 +1262,11 @@ fn a_function_called_inside_a_conditional_may_assign_its_own_variables() {
     );
     assert_eq!(codes, ["E0520"]);
 }
+
+#[test]
+fn texture_option_without_value() {
+    let (codes, text) =
+        run(&lines(&["surface s()", "{", "    Ci = environment(\"e.env\", I, \"blur\");", "}"]));
+    assert_eq!(codes, ["E0522"]);
+    assert!(text.contains("option `blur` of `environment` has no value"), "{text}");
+}

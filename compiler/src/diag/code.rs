@@ -129,6 +129,9 @@ codes! {
     Gather = "E0403",
     /// Renderer queries (`attribute`, `option`, `rendererinfo`, `textureinfo`).
     RendererQuery = "E0404",
+    /// A RenderMan feature accepted without its effect (a warning): a texture option no backend
+    /// honours, `printf` on the GPU, `bake`.
+    IgnoredFeature = "E0405",
 
     // Names and types.
     /// A name that no declaration, parameter or predefined variable defines.
@@ -174,6 +177,9 @@ codes! {
     /// Calls inlined too deeply, statements nested too deeply once calls are inlined, or a shader
     /// whose inlined code grows past the size limit.
     InlineLimit = "E0521",
+    /// An optional `"name", value` argument of a texture lookup that the function does not know (a
+    /// warning), or one without its value.
+    UnknownOption = "E0522",
 
     // Rates.
     /// A value of a higher rate stored in a variable declared with a lower one.

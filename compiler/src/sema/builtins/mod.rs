@@ -106,6 +106,45 @@ impl Builtins {
     }
 }
 
+/// The optional `"name", value` arguments a built-in accepts after its positional ones (RI 3.2,
+/// section 15.7), each with whether its value is a string (`"filter"`) rather than a float; `None`
+/// for a built-in that takes none.
+pub fn options(name: &str) -> Option<&'static [(&'static str, bool)]> {
+    const TEXTURE: &[(&str, bool)] = &[
+        ("blur", false),
+        ("width", false),
+        ("swidth", false),
+        ("twidth", false),
+        ("samples", false),
+        ("fill", false),
+        ("filter", true),
+    ];
+    const SHADOW: &[(&str, bool)] = &[
+        ("blur", false),
+        ("width", false),
+        ("swidth", false),
+        ("twidth", false),
+        ("samples", false),
+        ("bias", false),
+    ];
+    match name {
+        "texture" | "environment" => Some(TEXTURE),
+        "shadow" => Some(SHADOW),
+        _ => None,
+    }
+}
+
+/// The options of [`options`] that some backend implements for `name`; a call naming any other is
+/// warned about (E0405). The passes that implement an option read it from the call's arguments
+/// after the positional ones (`opt/textures.rs`, `opt/shadow.rs`): update this table with them.
+pub fn honoured_options(name: &str) -> &'static [&'static str] {
+    match name {
+        "environment" => &["blur", "width"],
+        "shadow" => &["samples", "blur", "bias", "width"],
+        _ => &[],
+    }
+}
+
 /// The built-in table, parsed on first use.
 pub fn builtins() -> &'static Builtins {
     static TABLE: OnceLock<Builtins> = OnceLock::new();

@@ -120,7 +120,21 @@ impl Lowerer<'_> {
         } else {
             locals.iter().map(|(_, f)| Candidate::User(f)).collect()
         };
-        let candidates: Vec<Candidate<'_>> = if user.is_empty() {
+        let builtin_call = user.is_empty();
+        // A texture lookup's optional `"name", value` arguments start at the first string literal
+        // after the file name; the overload is chosen by the arguments before them.
+        let (args, option_args) = match builtins::options(&callee.name) {
+            Some(_) if builtin_call => {
+                let at = args
+                    .iter()
+                    .skip(1)
+                    .position(|a| matches!(a.kind, ast::ExprKind::String(_)))
+                    .map_or(args.len(), |i| i + 1);
+                args.split_at(at)
+            }
+            _ => (args, &[][..]),
+        };
+        let candidates: Vec<Candidate<'_>> = if builtin_call {
             builtins::builtins().overloads(&callee.name).iter().map(Candidate::Builtin).collect()
         } else {
             user
@@ -208,6 +222,9 @@ impl Lowerer<'_> {
                         converted.push(self.coerce(arg, param, "the parameter")?);
                     }
                 }
+                if !option_args.is_empty() {
+                    self.lookup_options(callee, b, option_args, &mut converted, out)?;
+                }
                 // Space names given as literals are checked here; others are known per draw.
                 if matches!(b.name, "transform" | "vtransform" | "ntransform" | "ctransform") {
                     let colour = b.name == "ctransform";
@@ -246,6 +263,97 @@ impl Lowerer<'_> {
                 Some(self.push_expr(ExprKind::Builtin(b, converted), b.ret, span))
             }
         }
+    }
+
+    /// Checks the optional `"name", value` arguments of a texture lookup and appends each pair the
+    /// function knows to `converted` (a string literal, then the value as a float, or a string for
+    /// `"filter"`); warns about names it does not know (left out) and about options no backend
+    /// honours (kept, for the passes that will).
+    fn lookup_options(
+        &mut self,
+        callee: &ast::Ident,
+        b: &'static Builtin,
+        pairs: &[ast::Expr],
+        converted: &mut Vec<ExprId>,
+        out: &mut Block,
+    ) -> Option<()> {
+        let known = builtins::options(b.name).unwrap_or(&[]);
+        let honoured = builtins::honoured_options(b.name);
+        let mut ignored: Vec<String> = Vec::new();
+        for pair in pairs.chunks(2) {
+            let name_expr = &pair[0];
+            let ast::ExprKind::String(name) = &name_expr.kind else {
+                self.error(
+                    Diagnostic::error(
+                        Code::UnknownOption,
+                        format!("`{}` expects an option name here", b.name),
+                        name_expr.span,
+                        "expected a string literal naming an option",
+                    )
+                    .with_help("optional arguments come in pairs: `\"blur\", 0.01`"),
+                );
+                return None;
+            };
+            let Some(value) = pair.get(1) else {
+                self.error(Diagnostic::error(
+                    Code::UnknownOption,
+                    format!("option `{name}` of `{}` has no value", b.name),
+                    name_expr.span,
+                    "expected `, value` after this name",
+                ));
+                return None;
+            };
+            let Some(&(_, string_valued)) = known.iter().find(|(n, _)| *n == name.as_str()) else {
+                let names: Vec<String> = known.iter().map(|(n, _)| format!("`{n}`")).collect();
+                self.error(
+                    Diagnostic::warning(
+                        Code::UnknownOption,
+                        format!("`{}` has no option `{name}`; it is ignored", b.name),
+                        name_expr.span,
+                        "unknown option name",
+                    )
+                    .with_help(format!(
+                        "the options of `{}` are {}",
+                        b.name,
+                        names.join(", ")
+                    )),
+                );
+                continue;
+            };
+            let value_id = self.expr(value, None, out)?;
+            let want = if string_valued { Type::STRING } else { Type::FLOAT };
+            let value_id = self.coerce(value_id, want, &format!("option `{name}`"))?;
+            let name_id = self.expr(name_expr, None, out)?;
+            converted.push(name_id);
+            converted.push(value_id);
+            if !honoured.contains(&name.as_str()) && !ignored.contains(&name.to_string()) {
+                ignored.push(name.to_string());
+            }
+        }
+        if !ignored.is_empty() {
+            let list: Vec<String> = ignored.iter().map(|n| format!("`{n}`")).collect();
+            let honoured_list: Vec<String> = honoured.iter().map(|n| format!("`{n}`")).collect();
+            let note = if honoured.is_empty() {
+                format!("no option of `{}` has an effect yet", b.name)
+            } else {
+                format!("the options of `{}` with an effect are {}", b.name, honoured_list.join(", "))
+            };
+            self.error(
+                Diagnostic::warning(
+                    Code::IgnoredFeature,
+                    format!(
+                        "`{}` ignores the option{} {}",
+                        b.name,
+                        if list.len() == 1 { "" } else { "s" },
+                        list.join(", ")
+                    ),
+                    callee.span,
+                    "no backend implements these options",
+                )
+                .with_note(note),
+            );
+        }
+        Some(())
     }
 
     /// Inlines a call of `f` and returns the expression of its result; `None` past the inlining

@@ -97,9 +97,13 @@ fn probe(map: &str, d: [f64; 3], form: u32, backend: Backend, gpu: Option<&Gpu>)
     image.pixels[(4 * image.width + 4) as usize]
 }
 
-/// The lookups along `cases` (label, map, direction, form, expected RGB) on the CPU and, when
-/// there is one, the GPU; returns the largest error seen on each.
-fn check(cases: &[(String, &str, [f64; 3], u32, [f64; 3])]) -> (f64, f64) {
+/// One lookup to check: label, map, direction, form (0 colour, 1 float, 2 four directions) and
+/// the expected RGB.
+type Case<'a> = (String, &'a str, [f64; 3], u32, [f64; 3]);
+
+/// The lookups along `cases` on the CPU and, when there is one, the GPU; returns the largest
+/// error seen on each.
+fn check(cases: &[Case]) -> (f64, f64) {
     let gpu = patina_runtime::gpu::for_tests();
     let mut worst = (0.0f64, 0.0f64);
     for (label, map, d, form, expected) in cases {

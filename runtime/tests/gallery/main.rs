@@ -9,6 +9,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod environment;
 mod fur;
 mod gases;
 mod hypertexture;
@@ -37,6 +38,7 @@ const SCENES: &[&str] = &[
     "brick_filtering",
     "star",
     "planet",
+    "shinymetal",
 ];
 
 /// The other example scenes: the renderer's own examples, tested in `runtime/tests/render.rs`.
@@ -44,6 +46,7 @@ const EXAMPLES: &[&str] = &["bricks", "plastic", "ripples", "shiny", "textured"]
 
 /// Every test source that renders scenes, to find the scenes each one names.
 const TEST_SOURCES: &[&str] = &[
+    include_str!("environment.rs"),
     include_str!("fur.rs"),
     include_str!("gases.rs"),
     include_str!("hypertexture.rs"),

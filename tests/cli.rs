@@ -71,12 +71,12 @@ fn missing_unreadable_and_binary_files_get_one_line() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.starts_with("error: cannot read `/definitely/not/here.sl`"), "{stderr}");
 
-    let binary = scratch("binary.sl", &[b's', 0xff, 0xfe, b'\n']);
+    let binary = scratch("binary.sl", &[b's', 0xff, 0x00, b'\n']);
     let out = patina(&["check", binary.to_str().unwrap()]);
     assert!(!out.status.success());
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(stderr.contains("not valid UTF-8 (invalid byte at offset 1)"), "{stderr}");
+    assert!(stderr.contains("not a text file (a NUL byte at offset 2)"), "{stderr}");
 
     let dir = std::env::temp_dir();
     let out = patina(&["check", dir.to_str().unwrap()]);

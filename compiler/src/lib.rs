@@ -44,6 +44,10 @@ pub fn check_source(name: &str, text: &str, loader: &dyn SourceLoader) -> Checke
     let mut sources = SourceMap::new();
     let root = sources.add_file(name, text, None);
     let mut diagnostics = Diagnostics::default();
+    if loader.read_as_latin1(name) {
+        let start = crate::source::Span::new(root, 0..0);
+        diagnostics.push(syntax::preprocess::latin1_warning(name, start));
+    }
     let module = syntax::parse_file(&mut sources, root, loader, &mut diagnostics);
     // Semantics on a tree with syntax errors would only echo them.
     if diagnostics.has_errors() {

@@ -76,3 +76,30 @@ fn texture_options_not_honoured_or_unknown_are_warnings_and_wrong_types_errors()
     let (errors, _, text) = run("surface s() {\n    Ci = environment(\"e.env\", I, \"blur\");\n}\n");
     assert_eq!(errors, ["E0522"], "{text}");
 }
+
+#[test]
+fn latin1_files_are_read_with_a_warning() {
+    use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
+    let dir = std::env::temp_dir().join(format!("patina-latin1-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let header = dir.join("author.h");
+    std::fs::write(&header, b"/* \xa9 Fran\xe7ois */\nfloat half(float x) { return x / 2; }\n").unwrap();
+    let root = dir.join("root.sl");
+    std::fs::write(&root, b"#include \"author.h\"\n/* 90\xb0 */\nsurface s() { Ci = half(1); }\n").unwrap();
+    let text = read_source_file(&root).unwrap().unwrap();
+    assert!(text.contains("90\u{b0}"));
+    let name = root.to_string_lossy().into_owned();
+    let checked = check_source(&name, &text, &FsLoader::default());
+    let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
+    let rendered = render_text(&checked.sources, &list);
+    assert!(!checked.has_errors(), "{rendered}");
+    let warnings: Vec<&str> = list.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(warnings.len(), 2, "{rendered}");
+    assert!(warnings.iter().all(|w| w.contains("is not UTF-8; it was read as Latin-1")), "{rendered}");
+    std::fs::write(dir.join("binary.sl"), b"s\xff\x00").unwrap();
+    assert_eq!(
+        read_source_file(&dir.join("binary.sl")),
+        Err("not a text file (a NUL byte at offset 2)".into())
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

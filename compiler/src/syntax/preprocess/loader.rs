@@ -35,6 +35,13 @@ pub trait SourceLoader {
     /// Loads `target` as named by `#include "target"` (`quoted`) or `#include <target>`, from a
     /// file whose name is `includer`.
     fn load(&self, target: &str, quoted: bool, includer: &str) -> Result<Loaded, LoadError>;
+
+    /// Whether the file named `name` (as loaded, or as the root file was named) is not UTF-8 and
+    /// so was read as Latin-1 (see [`read_source_file`]); the front end warns about such files.
+    fn read_as_latin1(&self, name: &str) -> bool {
+        let _ = name;
+        false
+    }
 }
 
 /// The directory part of a file name as the loaders write them.
@@ -53,12 +60,21 @@ fn load_stdlib(target: &str, searched: &mut Vec<String>) -> Option<Loaded> {
     stdlib::source(target).map(|text| Loaded { name, text: text.to_string() })
 }
 
-/// Reads a file from disk, telling "absent" from "unusable".
+/// Reads a file from disk, telling "absent" from "unusable". A file that is not UTF-8 is read as
+/// Latin-1 (older shaders carry authors' names and degree signs in it), unless it holds a NUL
+/// byte, which no source text has: that is a binary file.
 pub fn read_source_file(path: &Path) -> Result<Option<String>, String> {
     match std::fs::read(path) {
-        Ok(bytes) => String::from_utf8(bytes).map(Some).map_err(|e| {
-            format!("not valid UTF-8 (invalid byte at offset {})", e.utf8_error().valid_up_to())
-        }),
+        Ok(bytes) => match String::from_utf8(bytes) {
+            Ok(text) => Ok(Some(text)),
+            Err(e) => {
+                let bytes = e.as_bytes();
+                match bytes.iter().position(|&b| b == 0) {
+                    Some(at) => Err(format!("not a text file (a NUL byte at offset {at})")),
+                    None => Ok(Some(bytes.iter().map(|&b| char::from(b)).collect())),
+                }
+            }
+        },
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
         Err(e) if path.is_dir() => Err(format!("is a directory ({e})")),
         Err(e) => Err(e.to_string()),
@@ -97,6 +113,22 @@ impl SourceLoader for FsLoader {
         }
         load_stdlib(target, &mut searched).ok_or(LoadError::NotFound { searched })
     }
+
+    fn read_as_latin1(&self, name: &str) -> bool {
+        std::fs::read(name).is_ok_and(|bytes| std::str::from_utf8(&bytes).is_err() && !bytes.contains(&0))
+    }
+}
+
+/// The warning for a file read as Latin-1 because it is not UTF-8, at `span` (the file's start,
+/// or the `#include` that read it).
+pub fn latin1_warning(name: &str, span: crate::source::Span) -> crate::diag::Diagnostic {
+    crate::diag::Diagnostic::warning(
+        crate::diag::Code::IncludeUnreadable,
+        format!("`{name}` is not UTF-8; it was read as Latin-1"),
+        span,
+        "read as Latin-1",
+    )
+    .with_help("convert the file to UTF-8 (e.g. `iconv -f latin1 -t utf-8`) to silence this")
 }
 
 /// A loader over files held in memory (plus the standard library), for tests and embedders.

@@ -10,7 +10,7 @@ mod expand;
 mod loader;
 
 pub use expand::Macro;
-pub use loader::{FsLoader, LoadError, Loaded, MemoryLoader, SourceLoader, read_source_file};
+pub use loader::{FsLoader, LoadError, Loaded, MemoryLoader, SourceLoader, latin1_warning, read_source_file};
 
 use std::ops::Range;
 
@@ -632,6 +632,9 @@ impl Preprocessor<'_> {
             Ok(loaded) => {
                 if self.once.contains(&loaded.name) || self.too_large(&loaded.name, loaded.text.len(), span) {
                     return;
+                }
+                if self.loader.read_as_latin1(&loaded.name) {
+                    self.diags.push(loader::latin1_warning(&loaded.name, span));
                 }
                 let id = self.sources.add_file(loaded.name, loaded.text, Some(span));
                 self.run_file(id, depth + 1);

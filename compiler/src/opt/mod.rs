@@ -4,13 +4,17 @@
 //! `filterstep`, `calculatenormal`) into plain arithmetic on derivative values computed by
 //! forward-mode automatic differentiation, seeded from the screen-space derivatives of the inputs.
 //! `textures` turns texture lookups into one filter written as arithmetic on texel fetches, so
-//! that every backend filters the same way.
+//! that every backend filters the same way; `shadow` does the same for shadow-map lookups
+//! (percentage-closer filtering over depth texels, the map carrying its own matrix).
 
 pub mod derivs;
+pub mod shadow;
 pub mod textures;
 
-/// What every backend runs a checked shader through first: derivatives, then texture lookups.
+/// What every backend runs a checked shader through first: derivatives, then texture lookups,
+/// then shadow-map lookups.
 pub fn prepare(shader: &mut crate::ir::Shader) {
     derivs::differentiate(shader);
     textures::expand(shader);
+    shadow::expand(shader);
 }

@@ -321,7 +321,7 @@ impl Translator<'_> {
                     ),
                 ));
             }
-            "texture" | "texture3d" | "environment" => {
+            "texture" | "texture3d" | "environment" | "shadow" => {
                 return Err(super::internal(
                     span,
                     format!(
@@ -329,15 +329,6 @@ impl Translator<'_> {
                         b.name
                     ),
                 ));
-            }
-            "shadow" => {
-                return Err(Diagnostic::error(
-                    Code::NotExecutable,
-                    format!("`{}` is not available on the GPU yet", b.name),
-                    span,
-                    "texture lookup",
-                )
-                .with_note("shadow maps have no implementation on either backend yet"));
             }
             _ => {
                 return Err(

@@ -213,6 +213,19 @@ fn random_is_deterministic_uniform_and_differs_per_point() {
 }
 
 #[test]
+fn random_stored_in_a_uniform_variable_is_one_value_per_draw() {
+    // RSL: `random()` where a uniform value is wanted is uniform (debug.sl, randgrid.sl).
+    let src = "surface t() {\n    uniform color c = color(random(), random(), random());\n    uniform float f;\n    f = random();\n    Ci = c + color(f, 0, random());\n}";
+    let out = run(src, 300, &[], &["Ci"]);
+    let first = out[0][..3].to_vec();
+    assert!(first.iter().all(|x| (0.0..2.0).contains(x)));
+    assert_ne!(first[0], first[1], "each call site has its own value");
+    assert!(out[0].chunks(3).all(|c| c[0] == first[0] && c[1] == first[1]), "uniform across points");
+    let zs: Vec<f64> = out[0].chunks(3).map(|c| c[2]).collect();
+    assert!(zs.iter().filter(|z| **z == zs[0]).count() < 5, "the varying call still varies");
+}
+
+#[test]
 fn string_parameters_with_defaults_are_compile_time_values() {
     let src = "surface t(string space = \"world\") { Ci = color(transform(space, point(1, 2, 3))); }";
     let program = compile(src, &Binding::default());

@@ -71,6 +71,7 @@ impl<'s> Builder<'s> {
                     }
                     RateRule::Derivative => rate,
                     RateRule::Fragment | RateRule::Lights => rate.join(Rate::FRAGMENT),
+                    RateRule::Uniform => rate.join(Rate::UNIFORM),
                     RateRule::Integrate => Rate { perlight: false, ..rate },
                 }
             }

@@ -170,6 +170,7 @@ impl Analysis<'_> {
                     // The derivative of a constant or per-draw value is exactly 0, at its rate.
                     RateRule::Derivative => (rate, origin),
                     RateRule::Fragment => (rate.join(Rate::FRAGMENT), Origin { span, why: Why::Fragment }),
+                    RateRule::Uniform => (rate.join(Rate::UNIFORM), Origin { span, why: Why::Declared }),
                     RateRule::Lights => (rate.join(Rate::FRAGMENT), Origin { span, why: Why::Lights }),
                     RateRule::Integrate => (Rate { perlight: false, ..rate }, origin),
                 }

@@ -13,5 +13,5 @@ pub mod scalar;
 
 pub use eval::{CpuProgram, EvalError, Evaluator, SlotId, SlotInfo};
 pub use exec::Texture;
-pub use lower::{Binding, LightBinding, POINT_INDEX, SlotKind};
+pub use lower::{Binding, LightBinding, POINT_INDEX, SlotKind, UNIFORM_RANDOM_POINT};
 pub(crate) use lower::{category_matches, element_type};

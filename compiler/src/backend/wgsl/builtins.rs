@@ -135,12 +135,19 @@ impl Translator<'_> {
                 Base::Matrix4 if !types[1].is_array() => self.select_matrix(v(0), v(1), v(2), 4),
                 _ => self.pick(v(0), v(1), v(2)),
             },
-            "random" => {
-                // The interpreter's hash of the point index and the call site (one site per
-                // component, numbered in the same order), in u32 arithmetic.
-                let var = self.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
-                let p = self.pointer(var);
-                let point = self.load(p);
+            "random" | "__uniform_random" => {
+                // The interpreter's hash of the point index (a fixed one for a uniform value) and
+                // the call site (one site per component, numbered in the same order), in u32
+                // arithmetic.
+                let point = if b.name == "random" {
+                    let var = self.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
+                    let p = self.pointer(var);
+                    self.load(p)
+                } else {
+                    self.fb.add(Expression::Literal(naga::Literal::U32(
+                        crate::backend::cpu::UNIFORM_RANDOM_POINT,
+                    )))
+                };
                 let parts: Vec<Value> = (0..ret.base.components())
                     .map(|_| {
                         self.random_sites += 1;

@@ -31,6 +31,9 @@ pub enum RateRule {
     Derivative,
     /// Always at least fragment rate (`random`, screen position).
     Fragment,
+    /// Always at least primitive-group rate: one value per draw (`random()` where a uniform value
+    /// is wanted, as `__uniform_random`).
+    Uniform,
     /// Sums over the bound lights (`ambient`, `diffuse`, `specular`, ...): fragment rate.
     Lights,
     /// `integrate`: the argument's rate without `perlight`.
@@ -241,6 +244,7 @@ fn parse_line(line: &'static str) -> Result<Vec<Builtin>, String> {
         match attr {
             "deriv" => rate = RateRule::Derivative,
             "fragment" => rate = RateRule::Fragment,
+            "uniform" => rate = RateRule::Uniform,
             "lights" => rate = RateRule::Lights,
             "integrate" => rate = RateRule::Integrate,
             "surface" => context = Context::Surface,

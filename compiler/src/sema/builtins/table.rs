@@ -75,6 +75,13 @@ pub const SIGNATURES: &[&str] = &[
     "color random() [fragment]",
     "point random() [fragment]",
     "vector random() [fragment]",
+    // Internal: `random()` lowered where a uniform value is wanted (RSL: `uniform float x =
+    // random()` is one value per primitive): the same hash, of a fixed point index instead of the
+    // point's, so one value per draw.
+    "float __uniform_random() [uniform]",
+    "color __uniform_random() [uniform]",
+    "point __uniform_random() [uniform]",
+    "vector __uniform_random() [uniform]",
     // Noise in [0, 1] over 1- to 4-dimensional domains; the result type chooses the overload.
     "for T in float|color|point|vector: T noise(float)",
     "for T in float|color|point|vector: T noise(float, float)",

@@ -260,6 +260,13 @@ impl Lowerer<'_> {
                 if crate::stdlib::is_library_builtin(b.name) {
                     return self.library_builtin(b, converted, span, out);
                 }
+                if b.name == "random"
+                    && self.uniform_random
+                    && let Some(u) =
+                        builtins::builtins().overloads("__uniform_random").iter().find(|u| u.ret == b.ret)
+                {
+                    return Some(self.push_expr(ExprKind::Builtin(u, converted), u.ret, span));
+                }
                 Some(self.push_expr(ExprKind::Builtin(b, converted), b.ret, span))
             }
         }

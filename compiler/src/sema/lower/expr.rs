@@ -528,7 +528,14 @@ impl Lowerer<'_> {
             }
         }
         let ty = self.ty(t);
-        let v = self.expr(value, Some(ty), out)?;
+        let uniform = place.root_local().is_some_and(|l| {
+            let local = &self.locals[l.0 as usize];
+            local.declared && local.rate.frequency == crate::ir::types::Frequency::PrimitiveGroup
+        });
+        let outer = std::mem::replace(&mut self.uniform_random, uniform);
+        let v = self.expr(value, Some(ty), out);
+        self.uniform_random = outer;
+        let v = v?;
         let v = match op {
             Some(op) => self.binary(op, t, v, span)?,
             None => v,

@@ -110,6 +110,9 @@ pub(super) struct Lowerer<'a> {
     nesting: usize,
     /// Whether `call::MAX_INLINED_NESTING` has been reported.
     nesting_reported: bool,
+    /// Whether the expression being lowered is stored in a variable declared uniform: `random()`
+    /// there is one value per draw (`__uniform_random`), as in RSL.
+    uniform_random: bool,
 }
 
 /// Lowers one shader; `None` if it had errors (they have been reported).
@@ -240,6 +243,7 @@ impl<'a> Lowerer<'a> {
             inline_limit_reported: false,
             nesting: 0,
             nesting_reported: false,
+            uniform_random: false,
         }
     }
 }

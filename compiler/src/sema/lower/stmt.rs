@@ -112,10 +112,13 @@ impl Lowerer<'_> {
                 continue;
             }
             let (rate, declared) = self.declared_rate(&decl.qualifiers, false);
+            let uniform = declared && rate.frequency == crate::ir::types::Frequency::PrimitiveGroup;
+            let outer = std::mem::replace(&mut self.uniform_random, uniform);
             let init = d.init.as_ref().and_then(|e| {
                 let value = self.expr(e, Some(ty), out)?;
                 self.coerce(value, ty, "the variable")
             });
+            self.uniform_random = outer;
             let id = self.new_local(d.name.name.clone(), ty, rate, declared, LocalKind::Var, d.name.span);
             if let Some(value) = init {
                 self.store(Place::Local(id), value, d.span, out);

@@ -99,15 +99,29 @@ impl Lower<'_> {
                 let c = self.truth(&vals[0]);
                 self.select(c, &vals[1], &vals[2])
             }
-            "random" => {
+            "random" | "__uniform_random" => {
                 let n = ret.base.components();
-                let point = self.named_input(POINT_INDEX, Type::of(Base::Uint), false)[0];
-                let regs = (0..n)
-                    .map(|_| {
-                        self.random_sites += 1;
-                        self.emit.random(self.random_sites, point)
-                    })
-                    .collect();
+                let regs = if b.name == "random" {
+                    let point = self.named_input(POINT_INDEX, Type::of(Base::Uint), false)[0];
+                    (0..n)
+                        .map(|_| {
+                            self.random_sites += 1;
+                            self.emit.random(self.random_sites, point)
+                        })
+                        .collect()
+                } else {
+                    // One value per draw: the hash of the fixed point index, known now.
+                    (0..n)
+                        .map(|_| {
+                            self.random_sites += 1;
+                            let x = crate::backend::cpu::exec::random(
+                                crate::backend::cpu::UNIFORM_RANDOM_POINT,
+                                self.random_sites,
+                            );
+                            self.emit.float(x)
+                        })
+                        .collect()
+                };
                 Val::Float(regs)
             }
             "xcomp" | "ycomp" | "zcomp" => {

@@ -29,6 +29,10 @@ pub(crate) use stmt::{category_matches, element_type};
 /// evaluation; a renderer gives the pixel (x + 65536 y), as the GPU computes it.
 pub const POINT_INDEX: &str = "point_index";
 
+/// The point index `random()` hashes where a uniform value is wanted (`__uniform_random`): one
+/// fixed index, so every point of a draw gets the same value (both backends).
+pub const UNIFORM_RANDOM_POINT: u32 = 0xffff_ffff;
+
 /// What the program is compiled for: the decisions that change its code.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Binding {

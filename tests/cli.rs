@@ -350,7 +350,7 @@ fn compile_with_fixed_parameters_leaves_out_what_they_decide() {
 }
 
 #[test]
-fn compile_binds_a_light_displacement_or_volume_shader_to_a_surface() {
+fn compile_binds_a_light_displacement_or_volume_shader_to_a_surface_and_an_imager_as_a_kernel() {
     let dir = std::env::temp_dir().join(format!("patina-compile-bound-{}", std::process::id()));
     let out_dir = dir.to_str().unwrap();
     let json = |name: &str| -> serde_json::Value {
@@ -391,6 +391,18 @@ fn compile_binds_a_light_displacement_or_volume_shader_to_a_surface() {
         j["uniforms"].as_array().unwrap().iter().map(|u| u["name"].as_str().unwrap()).collect();
     assert!(names.contains(&"a_falloff") && names.contains(&"a_background"), "{names:?}");
     assert!(wgsl("fog").contains("fn atmosphere"));
+    // An imager: the compute kernel the renderer runs per pixel, with its buffers' layout.
+    let out = patina(&["compile", &example("imagers.sl"), "--shader", "background", "-o", out_dir]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j = json("background");
+    assert_eq!((j["kind"].as_str(), j["entry"].as_str()), (Some("imager"), Some("main")));
+    let inputs: Vec<&str> =
+        j["input"]["values"].as_array().unwrap().iter().map(|v| v["name"].as_str().unwrap()).collect();
+    assert_eq!(inputs, ["Ci", "Oi", "alpha", "bgcolor"]);
+    let outputs: Vec<&str> =
+        j["output"]["values"].as_array().unwrap().iter().map(|v| v["name"].as_str().unwrap()).collect();
+    assert_eq!(outputs, ["Ci", "alpha"]);
+    assert!(wgsl("background").contains("@compute"));
     // --surface with a surface shader, and a surface file that is not there: one line each.
     let out = patina(&["compile", &example("plastic.sl"), "--surface", &surface, "-o", out_dir]);
     assert_eq!(out.status.code(), Some(2));

@@ -1033,12 +1033,12 @@ fn local_function_named_like_a_builtin() {
     let (codes, text) = run(&lines(&[
         "surface own(float Kd = 1)",
         "{",
-        "    float option(float x) { return x * Kd; }",
-        "    Ci = Cs * option(0.5);",
+        "    float attribute(float x) { return x * Kd; }",
+        "    Ci = Cs * attribute(0.5);",
         "}",
         "surface other(float Kd = 1)",
         "{",
-        "    Ci = Cs * option(0.5);",
+        "    Ci = Cs * attribute(0.5);",
         "}",
     ]));
     assert_eq!(codes, ["E0404"]);

@@ -242,6 +242,25 @@ fn string_parameters_with_defaults_are_compile_time_values() {
 }
 
 #[test]
+fn option_format_reads_the_resolution_from_the_raster_space() {
+    let src = "surface t() {\n    float r[3];\n    float ok = option(\"Format\", r);\n    Ci = color(r[0], r[1], r[2] * ok);\n}";
+    let program = compile(src, &Binding::default());
+    let mut eval = Evaluator::<f64>::new(&program);
+    // Current to NDC: the identity; current to raster: a 640 × 480 scale.
+    let mut ndc = [0.0; 16];
+    for i in 0..4 {
+        ndc[i * 5] = 1.0;
+    }
+    let mut raster = ndc;
+    raster[0] = 640.0;
+    raster[5] = 480.0;
+    eval.set("space:NDC", &ndc).unwrap();
+    eval.set("space:raster", &raster).unwrap();
+    let out = eval.eval_points(1, &[], &["Ci"]).unwrap();
+    assert_eq!(out[0], vec![640.0, 480.0, 1.0]);
+}
+
+#[test]
 fn light_construct_arguments_are_converted_and_counted() {
     // Integer angles are floats, as for any float argument (this used to reach the lowering as an
     // integer and panic it).

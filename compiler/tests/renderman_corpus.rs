@@ -103,3 +103,38 @@ fn latin1_files_are_read_with_a_warning() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn option_answers_format_and_exposure_and_warns_for_other_names() {
+    let src = "surface s() {\n    float r[3];\n    float g[2];\n    uniform string pass = \"\";\n    float ok = option(\"Format\", r) + option(\"Exposure\", g);\n    float no = option(\"user:pass\", pass);\n    Ci = color(r[0] / r[1], g[0] * g[1], ok + no);\n}\n";
+    let (errors, warnings, text) = run(src);
+    assert!(errors.is_empty(), "{text}");
+    assert_eq!(warnings.len(), 1, "{text}");
+    assert!(warnings[0].contains("`option` does not know `user:pass`"), "{text}");
+    let (errors, _, text) = run("surface s() {\n    float r[2];\n    option(\"Format\", r);\n}\n");
+    assert_eq!(errors, ["E0505"], "{text}");
+    assert!(text.contains("option `Format` is a `float[3]`, found `float[2]`"), "{text}");
+    let (errors, _, text) = run("surface s() {\n    float r[3];\n    option(attribute, r);\n}\n");
+    assert_eq!(errors, ["E0505"], "{text}");
+    let (errors, _, text) =
+        run("surface s() {\n    float r[3];\n    attribute(\"identifier:name\", r);\n}\n");
+    assert_eq!(errors, ["E0404"], "{text}");
+}
+
+#[test]
+fn bake_is_accepted_as_a_no_op_with_a_warning() {
+    let src = "surface s(string file = \"x.bake\") {\n    color c = color noise(s, t);\n    bake(file, s, t, c);\n    Ci = c;\n}\n";
+    let (errors, warnings, text) = run(src);
+    assert!(errors.is_empty(), "{text}");
+    assert_eq!(warnings, ["`bake` does nothing: bake files are not written"], "{text}");
+    let checked = check_source("shader.sl", src, &MemoryLoader::default());
+    let shader = &checked.program.shaders[0];
+    assert!(
+        !shader
+            .exprs
+            .iter()
+            .any(|e| matches!(&e.kind, patina_compiler::ir::ExprKind::Builtin(b, _) if b.name == "bake"))
+    );
+    let (errors, _, text) = run("surface s() {\n    bake(1, s, t, Ci);\n}\n");
+    assert_eq!(errors, ["E0503"], "{text}");
+}

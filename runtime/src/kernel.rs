@@ -70,8 +70,22 @@ pub fn run_kernel(
 ) -> Result<Vec<Vec<f64>>, KernelError> {
     let mut diff = shader.clone();
     patina_compiler::opt::derivs::differentiate(&mut diff);
+    run_prepared(gpu, &diff, lights, &[], count, inputs, outputs)
+}
+
+/// As [`run_kernel`], for a shader already differentiated (`opt::prepare` or `differentiate`),
+/// with the values of its string parameters.
+pub fn run_prepared(
+    gpu: &Gpu,
+    shader: &Shader,
+    lights: &[LightBinding],
+    strings: &[(String, String)],
+    count: usize,
+    inputs: &Columns,
+    outputs: &[&str],
+) -> Result<Vec<Vec<f64>>, KernelError> {
     let names: Vec<&str> = inputs.iter().map(|(n, _)| *n).collect();
-    let kernel = compile_kernel(&diff, lights, &[], &names, outputs).map_err(KernelError::Compile)?;
+    let kernel = compile_kernel(shader, lights, strings, &names, outputs).map_err(KernelError::Compile)?;
     let stride = kernel.input_stride as usize;
     let mut words = vec![0u32; count * stride];
     for (value, (name, column)) in kernel.inputs.iter().zip(inputs) {

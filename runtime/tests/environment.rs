@@ -14,16 +14,18 @@ use patina_runtime::scene::Scene;
 /// The probe: a surface whose colour is the lookup along the uniform (dx, dy, dz), in the
 /// colour, float and four-direction forms.
 const PROBE: &str = "surface probe(string map = \"sky:16\"; float dx = 0; float dy = 1; float dz = 0;
-    float form = 0)
+    float form = 0; float spread = 0.001)
 {
     vector D = vector(dx, dy, dz);
-    vector a = vector(0.3, -0.2, 0.1);
-    vector b = vector(-0.1, 0.25, 0.2);
+    vector a = spread * vector(0.3, -0.2, 0.1);
+    vector b = spread * vector(-0.1, 0.25, 0.2);
     color c = color environment(map, D);
     if (form == 1)
         c = color(float environment(map, D));
     else if (form == 2)
         c = color environment(map, D + a, D - a, D + b, D - b);
+    else if (form == 3)
+        c = color environment(map, D, \"blur\", spread);
     Ci = c;
     Oi = 1;
 }
@@ -74,6 +76,11 @@ fn cube_centre(face: u32, i: u32, j: u32, n: u32) -> [f64; 3] {
 
 /// A scene of one sphere filling the middle of an 8 × 8 image, shaded by the probe.
 fn probe_scene(map: &str, d: [f64; 3], form: u32) -> Scene {
+    probe_scene_spread(map, d, form, 0.001)
+}
+
+/// [`probe_scene`] with the four-direction form's directions `spread` apart.
+fn probe_scene_spread(map: &str, d: [f64; 3], form: u32, spread: f64) -> Scene {
     // A directory per scene: the tests run in parallel.
     static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
     let k = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -84,7 +91,7 @@ fn probe_scene(map: &str, d: [f64; 3], form: u32) -> Scene {
         "[output]\nwidth = 8\nheight = 8\nbackground = [0.0, 0.0, 0.0, 1.0]\n\
          [camera]\nfrom = [0.0, 0.0, -4.0]\nto = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov = 20\n\
          [[object]]\nmesh = \"sphere\"\ndetail = 16\nshader = \"probe.sl\"\n\
-         params = {{ map = \"{map}\", dx = {:?}, dy = {:?}, dz = {:?}, form = {form} }}\n",
+         params = {{ map = \"{map}\", dx = {:?}, dy = {:?}, dz = {:?}, form = {form}, spread = {spread:?} }}\n",
         d[0], d[1], d[2]
     );
     Scene::parse(&text, dir.join("probe.toml"), &dir).unwrap_or_else(|e| panic!("{e}"))
@@ -142,8 +149,8 @@ fn a_lookup_along_a_texel_centre_reads_that_texel_of_a_lat_long_map() {
         .collect();
     // Texel (80, 19) of sky:64 is in the sun (runtime/src/render/textures.rs).
     cases.push(("sky:64 sun".into(), "sky:64", latlong_centre(80, 19, 64), 0, [4.0, 3.6, 3.0]));
-    // Float form: the first channel; four directions: their mean, D; a direction's length
-    // does not matter.
+    // Float form: the first channel; four directions 0.001 apart: their mean, D (at level 0: a
+    // footprint of 0.005 texels); a direction's length does not matter.
     let d = latlong_centre(20, 12, n);
     let red = sky(d)[0];
     cases.push(("float form".into(), "sky:16", d, 1, [red; 3]));
@@ -193,5 +200,95 @@ fn a_zero_direction_reads_the_lat_long_centre_and_bad_names_are_one_error() {
             Ok(_) => panic!("{bad} loaded"),
         };
         assert!(message.contains(bad) && !message.contains('\n'), "{bad}: {message}");
+    }
+}
+
+/// Level `k` of `sky:16`'s chain at texel (x, y): the mean of the 2^k × 2^k level-0 texels it
+/// covers.
+fn level_texel(k: u32, x: u32, y: u32) -> [f64; 3] {
+    let n = 1 << k;
+    let mut sum = [0.0; 3];
+    for j in 0..n {
+        for i in 0..n {
+            let t = sky(latlong_centre(x * n + i, y * n + j, 16)).map(|c| f64::from(c as f32));
+            (0..3).for_each(|c| sum[c] += t[c]);
+        }
+    }
+    sum.map(|c| c / f64::from(n * n))
+}
+
+/// The bilinear lookup at (s, t) of level `k` of `sky:16` (32 × 16 at level 0), wrapping in s
+/// and clamping in t.
+fn level_bilinear(k: u32, s: f64, t: f64) -> [f64; 3] {
+    let (w, h) = (32 >> k, 16 >> k);
+    let (x, y) = (s * f64::from(w) - 0.5, t * f64::from(h) - 0.5);
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let col = |i: f64| (i as i64).rem_euclid(i64::from(w)) as u32;
+    let row = |j: f64| (j as i64).clamp(0, i64::from(h) - 1) as u32;
+    let texel = |i: f64, j: f64| level_texel(k, col(i), row(j));
+    let (a, b, c, d) = (texel(x0, y0), texel(x0 + 1.0, y0), texel(x0, y0 + 1.0), texel(x0 + 1.0, y0 + 1.0));
+    [0, 1, 2].map(|q| {
+        let top = a[q] + (b[q] - a[q]) * fx;
+        let bottom = c[q] + (d[q] - c[q]) * fx;
+        top + (bottom - top) * fy
+    })
+}
+
+#[test]
+fn a_wide_footprint_reads_the_mip_chain_trilinearly() {
+    // The four-direction form with D ± a, D ± b: the footprint is the largest distance from the
+    // first direction to the others, |2a| = 2 spread |(0.3, -0.2, 0.1)|, over |D| = 1; in
+    // level-0 texels of sky:16 (32 wide) f · 32 / 2π, and the level its log2.
+    let gpu = patina_runtime::gpu::for_tests();
+    // On the ground, where the checks make the levels differ.
+    let d = latlong_centre(20, 12, 16);
+    let s = d[0].atan2(-d[2]) / TAU + 0.5;
+    let t = d[0].hypot(d[2]).atan2(d[1]) / PI;
+    for spread in [0.5, 1.0, 2.0] {
+        let width = [2.0 * 0.3, 2.0 * -0.2, 2.0 * 0.1].map(|c: f64| c * spread);
+        let others = [[-0.4, 0.45, 0.1], [-0.2, -0.05, -0.3]].map(|v: [f64; 3]| v.map(|c| c * spread));
+        let footprint = [width, others[0], others[1]]
+            .iter()
+            .map(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+            .fold(0.0, f64::max);
+        let lod = (footprint * 32.0 / TAU).max(1.0).log2().min(4.0);
+        let (l0, f) = (lod.floor() as u32, lod - lod.floor());
+        let (near, far) = (level_bilinear(l0, s, t), level_bilinear((l0 + 1).min(4), s, t));
+        let expected = [0, 1, 2].map(|q| near[q] + (far[q] - near[q]) * f);
+        let scene = probe_scene_spread("sky:16", d, 2, spread);
+        let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{e}"));
+        let mut backends = vec![(Backend::Cpu, None)];
+        if let Some(g) = gpu.as_ref() {
+            backends.push((Backend::Gpu, Some(g)));
+        }
+        for (backend, g) in backends {
+            let image = render::render(&prepared, backend, g).unwrap_or_else(|e| panic!("{e}"));
+            let got = image.pixels[(4 * image.width + 4) as usize];
+            let error = (0..3).map(|q| (f64::from(got[q]) - expected[q]).abs()).fold(0.0, f64::max);
+            println!(
+                "spread {spread}: level {lod:.3} on {backend:?}: {got:?}, expected {expected:?}, error {error:.2e}"
+            );
+            assert!(error < 1e-3, "spread {spread}, level {lod}, {backend:?}: {got:?} vs {expected:?}");
+        }
+        // The "blur" option, a fraction of the map's width: 0.25 of 32 texels is level 3.
+        if spread == 2.0 {
+            let expected = level_bilinear(3, s, t);
+            let scene = probe_scene_spread("sky:16", d, 3, 0.25);
+            let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{e}"));
+            let image = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{e}"));
+            let got = image.pixels[(4 * image.width + 4) as usize];
+            println!("blur 0.25: {got:?}, expected {expected:?}");
+            assert!(
+                (0..3).all(|q| (f64::from(got[q]) - expected[q]).abs() < 1e-4),
+                "blur: {got:?} vs {expected:?}"
+            );
+        }
+        // The blurred value is not level 0's.
+        let sharp = level_bilinear(0, s, t);
+        assert!(
+            (0..3).any(|q| (sharp[q] - expected[q]).abs() > 0.01),
+            "spread {spread}: {sharp:?} {expected:?}"
+        );
     }
 }

@@ -62,6 +62,94 @@ fn target(file: &Path, name: Option<&str>, include: &[PathBuf]) -> Option<(Shade
     Some((found.kind, found.name.to_string()))
 }
 
+/// An imager shader: compiled as the compute kernel the renderer runs over the finished image
+/// (one invocation per pixel), written as NAME.wgsl with NAME.json giving its buffers' layout.
+fn imager(args: &CompileArgs, name: &str) -> Result<ExitCode, String> {
+    use patina_compiler::backend::cpu::{Binding, CpuProgram};
+    use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
+    let text = patina_compiler::syntax::preprocess::read_source_file(&args.file)
+        .map_err(|e| format!("cannot read `{}`: {e}", args.file.display()))?
+        .ok_or_else(|| format!("cannot read `{}`: no such file", args.file.display()))?;
+    let mut include_dirs: Vec<PathBuf> = args.file.parent().map(Path::to_path_buf).into_iter().collect();
+    include_dirs.extend(args.include.iter().cloned());
+    let shown = args.file.display().to_string();
+    let checked = patina_compiler::check_source(
+        &shown,
+        &text,
+        &patina_compiler::syntax::preprocess::FsLoader { include_dirs },
+    );
+    let Some(found) = checked.program.shaders.iter().find(|s| s.name == name) else {
+        return Err(format!("`{shown}` has errors"));
+    };
+    let mut numbers = Vec::new();
+    let mut strings = Vec::new();
+    for spec in &args.fix {
+        match parse_fixed(spec)? {
+            (n, Value::String(s)) => strings.push((n, s)),
+            (n, Value::Numbers(v)) => numbers.push(patina_compiler::bind::Fixed { name: n, value: v }),
+            (n, _) => return Err(format!("`--fix {n}`: not a number or a string")),
+        }
+    }
+    for fixed in numbers.iter().map(|f| &f.name).chain(strings.iter().map(|(n, _)| n)) {
+        if !found.params.iter().any(|p| found.local(*p).name == fixed.as_str()) {
+            return Err(format!("shader `{name}` has no parameter `{fixed}`"));
+        }
+    }
+    let bound = patina_compiler::bind::specialize(found, &numbers, patina_compiler::bind::Consumed::All);
+    let mut shader = bound.shader;
+    patina_compiler::opt::prepare(&mut shader);
+    let binding = Binding { lights: Vec::new(), strings: strings.clone() };
+    let cpu = CpuProgram::compile(&shader, &binding).map_err(|d| d.message)?;
+    // What the renderer hands an imager, and the parameters the program reads.
+    let mut inputs: Vec<String> = ["P", "s", "t", "Ci", "Oi", "alpha"]
+        .iter()
+        .filter(|n| cpu.slot(n).is_some())
+        .map(|n| n.to_string())
+        .collect();
+    for p in &shader.params {
+        let local = shader.local(*p);
+        if cpu.slot(&local.name).is_some() && !inputs.contains(&local.name.to_string()) {
+            inputs.push(local.name.to_string());
+        }
+    }
+    let outputs: Vec<&str> = ["Ci", "alpha"].into_iter().filter(|n| cpu.slot(n).is_some()).collect();
+    let refs: Vec<&str> = inputs.iter().map(String::as_str).collect();
+    let kernel = compile_kernel(&shader, &[], &strings, &refs, &outputs).map_err(|d| d.message)?;
+    let wgsl =
+        naga::back::wgsl::write_string(&kernel.module, &kernel.info, naga::back::wgsl::WriterFlags::empty())
+            .map_err(|e| format!("internal error: writing WGSL failed: {e}"))?;
+    let values = |list: &[patina_compiler::backend::wgsl::KernelValue]| -> Vec<serde_json::Value> {
+        list.iter()
+            .map(|v| serde_json::json!({"name": v.name, "ty": v.ty.to_string(), "offset": v.offset, "words": v.words}))
+            .collect()
+    };
+    let json = serde_json::json!({
+        "version": 1,
+        "kind": "imager",
+        "shader": name,
+        "entry": "main",
+        "workgroup_size": KERNEL_WORKGROUP,
+        "input": {"group": 0, "binding": 1, "stride": kernel.input_stride, "values": values(&kernel.inputs)},
+        "output": {"group": 0, "binding": 2, "stride": kernel.output_stride, "values": values(&kernel.outputs)},
+    });
+    let json = serde_json::to_string_pretty(&json).map_err(|e| e.to_string())?;
+    write_outputs(&args.output, name, &wgsl, &json)
+}
+
+/// Writes NAME.wgsl and NAME.json into `dir`.
+fn write_outputs(dir: &Path, name: &str, wgsl: &str, json: &str) -> Result<ExitCode, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create `{}`: {e}", dir.display()))?;
+    let write = |path: PathBuf, text: &str| {
+        std::fs::write(&path, text).map_err(|e| format!("cannot write `{}`: {e}", path.display()))
+    };
+    let wgsl_path = dir.join(format!("{name}.wgsl"));
+    let json_path = dir.join(format!("{name}.json"));
+    write(wgsl_path.clone(), wgsl)?;
+    write(json_path.clone(), json)?;
+    eprintln!("wrote {} and {}", wgsl_path.display(), json_path.display());
+    Ok(ExitCode::SUCCESS)
+}
+
 /// The surface a light, displacement or volume shader compiled on its own is bound to:
 /// `--surface PATH[:NAME]`, or the standard library's `plastic`.
 fn surface_source(spec: Option<&str>) -> Result<(String, String, Option<String>), String> {
@@ -101,12 +189,7 @@ pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
         Some((kind @ (ShaderKind::Light | ShaderKind::Displacement | ShaderKind::Volume), name)) => {
             Some((kind, name))
         }
-        Some((ShaderKind::Imager, name)) => {
-            return Err(format!(
-                "`{name}` is an imager shader: imagers run over the finished image, not beside a \
-                 surface (bind one in a scene's [imager] table)"
-            ));
-        }
+        Some((ShaderKind::Imager, name)) => return imager(&args, &name),
         _ => None,
     };
     let result = match &bound {
@@ -156,16 +239,6 @@ pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
         eprintln!("{}", compiled.warnings);
     }
     let json = serde_json::to_string_pretty(&compiled.interface).map_err(|e| e.to_string())?;
-    std::fs::create_dir_all(&args.output)
-        .map_err(|e| format!("cannot create `{}`: {e}", args.output.display()))?;
-    let write = |path: PathBuf, text: &str| {
-        std::fs::write(&path, text).map_err(|e| format!("cannot write `{}`: {e}", path.display()))
-    };
     let name = bound.as_ref().map_or(compiled.name(), |(_, name)| name.as_str());
-    let wgsl_path = args.output.join(format!("{name}.wgsl"));
-    let json_path = args.output.join(format!("{name}.json"));
-    write(wgsl_path.clone(), &compiled.wgsl)?;
-    write(json_path.clone(), &json)?;
-    eprintln!("wrote {} and {}", wgsl_path.display(), json_path.display());
-    Ok(ExitCode::SUCCESS)
+    write_outputs(&args.output, name, &compiled.wgsl, &json)
 }

@@ -11,9 +11,11 @@ pub mod derivs;
 pub mod shadow;
 pub mod textures;
 
-/// What every backend runs a checked shader through first: derivatives, then texture lookups,
+/// What every backend runs a checked shader through first: the footprints of environment lookups
+/// (`textures::footprints`, derivative consumers), derivatives, then texture lookups,
 /// then shadow-map lookups.
 pub fn prepare(shader: &mut crate::ir::Shader) {
+    textures::footprints(shader);
     derivs::differentiate(shader);
     textures::expand(shader);
     shadow::expand(shader);

@@ -33,10 +33,17 @@
 //!   the image's top row, straight up). The filter wraps in s and clamps in t. A zero D reads
 //!   (½, ½).
 //!
-//! D need not be normalized. The filter is level 0 only: the lookup's footprint (the derivatives
-//! of D) and the `"blur"` / `"width"` options are not used yet.
+//! D need not be normalized. A lat-long map may carry its mip chain (the runtime's `sky:N` and
+//! `env:FILE` do): a texture w texels wide and w − 1 tall holds level 0 (w × w/2, w a power of
+//! two) in its top rows and each further level, half as wide and tall, below the previous one,
+//! down to 2 × 1. Such a map is filtered trilinearly: the footprint f (radians) is the lookup's
+//! `"__footprint"` (added by [`footprints`] before `opt::derivs`: √area(D), from D's screen
+//! derivatives) over |D|, times `"width"` when given; in level-0 texels it is
+//! f · w / 2π + blur · w (`"blur"`, a fraction of the map's width, when given), and the level is
+//! log2 of that (at least 1 texel), clamped to the last level. Cube maps and maps without a
+//! chain are read at level 0, where `"blur"` and `"width"` do nothing.
 //!
-//! Optional `"name", value` pairs after a lookup's positional arguments are skipped here.
+//! Other optional `"name", value` pairs after a lookup's positional arguments are skipped here.
 //!
 //! Runs after `opt::derivs` (texture lookups carry no derivatives through it) and before the
 //! split; rewrites each lookup in place, appending the expressions it needs, all at the lookup's
@@ -44,7 +51,7 @@
 
 use crate::ir::build::Builder;
 use crate::ir::types::{Base, Type};
-use crate::ir::{BinaryOp, ExprId, ExprKind, Shader};
+use crate::ir::{BinaryOp, ExprId, ExprKind, Literal, Shader};
 use crate::sema::globals;
 
 /// Rewrites every `texture`, `texture3d` and `environment` lookup of `shader` into texel fetches
@@ -59,9 +66,12 @@ pub fn expand(shader: &mut Shader) {
         .collect();
     for id in lookups {
         let span = shader.expr(id).span;
-        let (args, name) = match &shader.expr(id).kind {
-            // Only the positional arguments: optional "name", value pairs may follow them.
-            ExprKind::Builtin(b, args) => (args[..b.params.len().min(args.len())].to_vec(), b.name),
+        let (args, options, name) = match &shader.expr(id).kind {
+            // The positional arguments; optional "name", value pairs may follow them.
+            ExprKind::Builtin(b, args) => {
+                let n = b.params.len().min(args.len());
+                (args[..n].to_vec(), args[n..].to_vec(), b.name)
+            }
             _ => continue,
         };
         let three_d = name == "texture3d";
@@ -72,7 +82,12 @@ pub fn expand(shader: &mut Shader) {
         let texture = args[0];
         let rgba = if name == "environment" {
             let Some(direction) = environment_direction(&mut b, &args) else { continue };
-            environment(&mut b, texture, direction)
+            let footprint = Footprint {
+                width: option(&b, &options, FOOTPRINT),
+                scale: option(&b, &options, "width"),
+                blur: option(&b, &options, "blur"),
+            };
+            environment(&mut b, texture, direction, footprint)
         } else {
             let Some(coords) = coordinates(&mut b, &args, three_d) else { continue };
             if three_d { filter3(&mut b, texture, &coords) } else { filter2(&mut b, texture, &coords) }
@@ -94,6 +109,69 @@ pub fn expand(shader: &mut Shader) {
             e.rate = e.rate.join(rate);
         }
     }
+}
+
+/// The name of the option pair [`footprints`] appends to each `environment` lookup: its value is
+/// the lookup's footprint, the width of the region its direction sweeps across a pixel.
+const FOOTPRINT: &str = "__footprint";
+
+/// Gives every `environment` lookup its footprint, as a trailing `"__footprint", w` option pair:
+/// for `environment(name, D)` w = sqrt(area(D)) (the square root of |dD/dx × dD/dy|, screen
+/// derivatives); for the four-direction form the largest distance from the first direction to
+/// the others. Runs before `opt::derivs`, which rewrites `area` into arithmetic on derivatives
+/// (0 for a D that does not vary); `expand` divides w by |D| to make it an angle.
+pub fn footprints(shader: &mut Shader) {
+    let lookups: Vec<ExprId> = (0..shader.exprs.len() as u32)
+        .map(ExprId)
+        .filter(|id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if b.name == "environment"))
+        .collect();
+    for id in lookups {
+        let span = shader.expr(id).span;
+        let ExprKind::Builtin(builtin, args) = shader.expr(id).kind.clone() else { continue };
+        let n = builtin.params.len().min(args.len());
+        let mut b = Builder::new(shader, span);
+        let width = match n {
+            2 => {
+                let point = b.convert(args[1], Type::of(Base::Point));
+                let area = b.call("area", vec![point]);
+                b.call("sqrt", vec![area])
+            }
+            5 => {
+                let distance = |b: &mut Builder, k: usize| {
+                    let d = b.binary(BinaryOp::Sub, args[k], args[1]);
+                    b.call("length", vec![d])
+                };
+                let (d2, d3, d4) = (distance(&mut b, 2), distance(&mut b, 3), distance(&mut b, 4));
+                b.call("max", vec![d2, d3, d4])
+            }
+            _ => continue,
+        };
+        let name = b.push(ExprKind::Literal(Literal::String(FOOTPRINT.into())), Type::STRING);
+        if let ExprKind::Builtin(_, args) = &mut b.shader.exprs[id.0 as usize].kind {
+            args.extend([name, width]);
+        }
+    }
+}
+
+/// The value of the numeric option `name` among a lookup's trailing `"name", value` pairs, as a
+/// float; `None` when it is absent (or not a number).
+fn option(b: &Builder, options: &[ExprId], name: &str) -> Option<ExprId> {
+    options.chunks(2).find_map(|pair| match (&b.shader.expr(pair[0]).kind, pair.get(1)) {
+        (ExprKind::Literal(Literal::String(n)), Some(&value))
+            if n.as_str() == name && matches!(b.ty(value), t if t == Type::FLOAT || t == Type::INT) =>
+        {
+            Some(value)
+        }
+        _ => None,
+    })
+}
+
+/// What widens an environment lookup's filter: its footprint (from [`footprints`]) and the
+/// `"width"` (a factor on it) and `"blur"` (added, a fraction of the map's width) options.
+struct Footprint {
+    width: Option<ExprId>,
+    scale: Option<ExprId>,
+    blur: Option<ExprId>,
 }
 
 /// The lookup's coordinates as floats: (s, t) or (s, t, r).
@@ -216,7 +294,7 @@ fn environment_direction(b: &mut Builder, args: &[ExprId]) -> Option<ExprId> {
 
 /// The environment lookup along `d` (module documentation): a lat-long or a cube-map atlas,
 /// chosen by the texture's shape, filtered bilinearly; the RGBA `float4`.
-fn environment(b: &mut Builder, texture: ExprId, d: ExprId) -> ExprId {
+fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint) -> ExprId {
     let (x, y, z) = (b.index(d, 0), b.index(d, 1), b.index(d, 2));
     let zero_f = b.float(0.0);
     let half = b.float(0.5);
@@ -290,31 +368,90 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId) -> ExprId {
     let ox = b.binary(BinaryOp::Mul, column, size);
     let oy = b.binary(BinaryOp::Mul, row, size);
 
-    // One filter: lat-long (s wraps over the width, t clamps to the height) or the face's square.
+    // The mip level: a lat-long map with its chain (h = w - 1: level 0, w × w/2, on top, each next
+    // level half as wide and tall below the last) is read at log2 of the footprint in level-0
+    // texels, trilinearly between the two levels about it; other maps at level 0.
+    let w_less_one = b.binary(BinaryOp::Sub, w, one);
+    let chain_shape = b.binary(BinaryOp::Eq, h, w_less_one);
+    let is_latlong = b.binary(BinaryOp::Ne, w2, h3);
+    let has_chain = b.binary(BinaryOp::And, chain_shape, is_latlong);
+    let half_w = b.binary(BinaryOp::Div, w, two);
+    let level0_h = b.select(has_chain, half_w, h);
+    let w_f = b.convert(w, Type::FLOAT);
+    let h0_f = b.convert(level0_h, Type::FLOAT);
+    let base = b.float(2.0);
+    let top_level = b.call("log", vec![h0_f, base]);
+    let top_level = b.binary(BinaryOp::Add, top_level, half);
+    let top_level = b.call("floor", vec![top_level]);
+    // The footprint in level-0 texels: an angle (the width over |D|) times the texels per radian
+    // along the equator, scaled by "width", plus "blur" map widths.
+    let mut texels = zero_f;
+    if let Some(width) = footprint.width {
+        let length = b.call("sqrt", vec![len2]);
+        let length = b.call("max", vec![length, tiny]);
+        let angle = b.binary(BinaryOp::Div, width, length);
+        let per_radian = b.binary(BinaryOp::Mul, w_f, inv_two_pi);
+        texels = b.binary(BinaryOp::Mul, angle, per_radian);
+        if let Some(scale) = footprint.scale {
+            let scale = b.convert(scale, Type::FLOAT);
+            texels = b.binary(BinaryOp::Mul, texels, scale);
+        }
+    }
+    if let Some(blur) = footprint.blur {
+        let blur = b.convert(blur, Type::FLOAT);
+        let blur = b.binary(BinaryOp::Mul, blur, w_f);
+        texels = b.binary(BinaryOp::Add, texels, blur);
+    }
+    let texels = b.call("max", vec![texels, one_f]);
+    let lod = b.call("log", vec![texels, base]);
+    let lod = b.call("min", vec![lod, top_level]);
+    let lod = b.select(has_chain, lod, zero_f);
+    let lod_floor = b.call("floor", vec![lod]);
+    let between = b.binary(BinaryOp::Sub, lod, lod_floor);
+    let top_level = b.convert(top_level, Type::INT);
+    let l0 = b.convert(lod_floor, Type::INT);
+    let l0 = b.call("clamp", vec![l0, zero, top_level]);
+    let l1 = b.binary(BinaryOp::Add, l0, one);
+    let l1 = b.call("min", vec![l1, top_level]);
+    let l1 = b.select(has_chain, l1, l0);
+
+    // One filter per level: lat-long (s wraps over the level's width, t clamps to its height, its
+    // rows below the levels above it) or the face's square.
     let s = b.select(is_cube, u, s);
     let t = b.select(is_cube, v, t);
-    let across = b.select(is_cube, size, w);
-    let down = b.select(is_cube, size, h);
-    let across_f = b.convert(across, Type::FLOAT);
-    let down_f = b.convert(down, Type::FLOAT);
-    let (x0, x1, wx) = split(b, s, across_f);
-    let (y0, y1, wy) = split(b, t, down_f);
-    let last_across = b.binary(BinaryOp::Sub, across, one);
-    let last_down = b.binary(BinaryOp::Sub, down, one);
-    let column_of = |b: &mut Builder, i: ExprId| {
-        let clamped = b.call("clamp", vec![i, zero, last_across]);
-        let in_face = b.binary(BinaryOp::Add, clamped, ox);
-        let wrapped = wrap(b, i, w);
-        b.select(is_cube, in_face, wrapped)
+    let across0 = b.select(is_cube, size, w);
+    let down0 = b.select(is_cube, size, level0_h);
+    let level = |b: &mut Builder, l: ExprId| {
+        let across = b.binary(BinaryOp::Shr, across0, l);
+        let down = b.binary(BinaryOp::Shr, down0, l);
+        // Level l's first row: 2 h0 - 2 (h0 >> l), the heights of the levels above it.
+        let twice = b.binary(BinaryOp::Mul, down0, two);
+        let twice_l = b.binary(BinaryOp::Mul, down, two);
+        let first_row = b.binary(BinaryOp::Sub, twice, twice_l);
+        let row_offset = b.select(is_cube, oy, first_row);
+        let across_f = b.convert(across, Type::FLOAT);
+        let down_f = b.convert(down, Type::FLOAT);
+        let (x0, x1, wx) = split(b, s, across_f);
+        let (y0, y1, wy) = split(b, t, down_f);
+        let last_across = b.binary(BinaryOp::Sub, across, one);
+        let last_down = b.binary(BinaryOp::Sub, down, one);
+        let column_of = |b: &mut Builder, i: ExprId| {
+            let clamped = b.call("clamp", vec![i, zero, last_across]);
+            let in_face = b.binary(BinaryOp::Add, clamped, ox);
+            let wrapped = wrap(b, i, across);
+            b.select(is_cube, in_face, wrapped)
+        };
+        let row_of = |b: &mut Builder, i: ExprId| {
+            let clamped = b.call("clamp", vec![i, zero, last_down]);
+            b.binary(BinaryOp::Add, clamped, row_offset)
+        };
+        let (x0, x1) = (column_of(b, x0), column_of(b, x1));
+        let (y0, y1) = (row_of(b, y0), row_of(b, y1));
+        bilinear(b, texture, [x0, x1, wx], [y0, y1, wy])
     };
-    let row_of = |b: &mut Builder, i: ExprId| {
-        let clamped = b.call("clamp", vec![i, zero, last_down]);
-        let in_face = b.binary(BinaryOp::Add, clamped, oy);
-        b.select(is_cube, in_face, clamped)
-    };
-    let (x0, x1) = (column_of(b, x0), column_of(b, x1));
-    let (y0, y1) = (row_of(b, y0), row_of(b, y1));
-    bilinear(b, texture, [x0, x1, wx], [y0, y1, wy])
+    let near = level(b, l0);
+    let far = level(b, l1);
+    mix(b, near, far, between)
 }
 
 fn filter3(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {

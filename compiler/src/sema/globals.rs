@@ -134,6 +134,9 @@ pub const GLOBALS: &[Global] = &[
     g("dv", Base::Float, Fragment, false, Read, SURFACE_LIGHT_DISPLACEMENT, RenderMan, Anywhere, "change of v between adjacent samples"),
     g("s", Base::Float, Vertex, false, Read, SURFACE_LIGHT_DISPLACEMENT, RenderMan, Anywhere, "texture coordinate s"),
     g("t", Base::Float, Vertex, false, Read, SURFACE_LIGHT_DISPLACEMENT, RenderMan, Anywhere, "texture coordinate t"),
+    // Aqsis gives imagers s and t too: the pixel's position across the image, in [0, 1].
+    g("s", Base::Float, Vertex, false, Read, IMAGER, RenderMan, Anywhere, "horizontal position in the image, 0 to 1"),
+    g("t", Base::Float, Vertex, false, Read, IMAGER, RenderMan, Anywhere, "vertical position in the image, 0 to 1 (downwards)"),
     // The viewer.
     g("I", Base::Vector, Vertex, false, Read, SURFACE_DISPLACEMENT_VOLUME, RenderMan, Anywhere, "incident ray direction, eye to point"),
     g("E", Base::Point, PrimitiveGroup, false, Read, SURFACE_LIGHT_DISPLACEMENT_VOLUME, RenderMan, Anywhere, "position of the eye"),
@@ -287,7 +290,7 @@ mod tests {
         assert_eq!(names(Light, false), rsl("P dPdu dPdv N Ng u v du dv s t L Ps E Cl Ol ncomps time dtime"));
         assert_eq!(names(Displacement, false), rsl("P dPdu dPdv N Ng I E u v du dv s t ncomps time dtime"));
         assert_eq!(names(Volume, false), rsl("P I E Ci Oi ncomps time dtime"));
-        assert_eq!(names(Imager, false), rsl("P Ci Oi alpha ncomps time dtime"));
+        assert_eq!(names(Imager, false), rsl("P s t Ci Oi alpha ncomps time dtime"));
         let raw = "__position __normal __binormal __objnormal __objbinormal __modelview __modelview3 \
                    __invmodelview __invmodelview3 __projection __ambient";
         let raw: Vec<&str> = raw.split_whitespace().collect();

@@ -21,7 +21,7 @@ pub fn call(callee: &Ident) -> Option<Diagnostic> {
         | "incident" | "opposite" | "interior" | "exterior" => {
             (Code::MessagePassing, "message passing between shaders", MESSAGES)
         }
-        "attribute" | "option" | "rendererinfo" | "textureinfo" => (
+        "attribute" | "rendererinfo" | "textureinfo" => (
             Code::RendererQuery,
             "renderer queries",
             "a shader's inputs are its parameters and the scene's bound values; pass the value as a parameter",

@@ -26,7 +26,7 @@
 //!   (0.15, 0.35, 0.8), horizon + (zenith − horizon) D.y, except the sun: where D · S ≥ cos 6°,
 //!   S = (1, 1, −1) / √3, the texel is (4, 3.6, 3). Below, a ground of 16 × 8 checks in (s, t) =
 //!   (φ / 2π + ½, θ / π): (0.45, 0.4, 0.32) where ⌊16 s⌋ + ⌊8 t⌋ is even, (0.12, 0.1, 0.08)
-//!   where odd. Alpha 1. Computed in f64 and rounded once;
+//!   where odd. Alpha 1. Computed in f64 and rounded once, then given its mip chain (below);
 //! - `skycube:N`: the same sky as a cube map of N × N faces (default 32): an atlas 3N × 2N, faces
 //!   +X, −X, +Y in the top row and −Y, +Z, −Z below, face texel (i, j) the sky along the
 //!   direction of its centre (sc, tc) = (2 (i + ½) / N − 1, 2 (j + ½) / N − 1) in OpenGL's face
@@ -34,6 +34,12 @@
 //!   +Z: (sc, −tc, 1), −Z: (−sc, −tc, −1));
 //! - `cube:A,B,C,D,E,F`: a cube map from six square images of one size (files as below), in the
 //!   order +X, −X, +Y, −Y, +Z, −Z, packed into that atlas.
+//!
+//! - `env:FILE`: the lat-long map FILE (2:1, a power of two tall) with its mip chain: levels of
+//!   half the width and height, each texel the mean of 2 × 2 of the level above, down to 2 × 1,
+//!   stacked below level 0 in one texture w × (w − 1), each level's rows padded with black to w.
+//!   An environment lookup reads such a map trilinearly by its footprint; any other lat-long map
+//!   at level 0.
 //!
 //! Any other name is a file relative to the scene's directory: PNG (8 or 16 bits), or Radiance
 //! HDR (`.hdr`, kept in linear floats). An environment lookup reads a texture three texels wide
@@ -132,7 +138,19 @@ pub fn load(name: &str, base: &Path) -> Result<Texture, RenderError> {
                     sky_texel(d).map(|c| c as f32)
                 })
                 .collect::<Vec<_>>();
-            Ok(Texture { size: [2 * n, n, 1], texels: Arc::from(texels) })
+            Ok(with_chain(2 * n, n, texels))
+        }
+        "env" => {
+            let file = spec.unwrap_or("");
+            let level0 = read_file(file, base)?;
+            let [w, h, _] = level0.size;
+            if w != 2 * h || !h.is_power_of_two() {
+                return Err(RenderError::Input(format!(
+                    "texture `{name}`: a lat-long map with a mip chain must be twice as wide as tall, \
+                     a power of two (`{file}` is {w}x{h})"
+                )));
+            }
+            Ok(with_chain(w, h, level0.texels.to_vec()))
         }
         "skycube" => {
             let n = count(spec, 32)?;
@@ -193,6 +211,32 @@ fn read_file(name: &str, base: &Path) -> Result<Texture, RenderError> {
     let image = crate::image::Image::read_png(&path)
         .map_err(|e| RenderError::Input(format!("texture `{name}`: {e}")))?;
     Ok(Texture { size: [image.width, image.height, 1], texels: Arc::from(image.pixels) })
+}
+
+/// A lat-long map's level 0 (w × h, w = 2h, h a power of two) with its mip chain below it: each
+/// level the mean of 2 × 2 texels of the previous one, down to 2 × 1, stacked in one texture
+/// w × (w − 1) (the layout `environment` lookups read, compiler/src/opt/textures.rs).
+fn with_chain(w: u32, h: u32, level0: Vec<[f32; 4]>) -> Texture {
+    let mut texels = level0.clone();
+    let (mut level, mut lw, mut lh) = (level0, w, h);
+    while lh > 1 {
+        let (nw, nh) = (lw / 2, lh / 2);
+        let next: Vec<[f32; 4]> = (0..nw * nh)
+            .map(|i| {
+                let (x, y) = ((i % nw) * 2, (i / nw) * 2);
+                let at = |dx: u32, dy: u32| level[((y + dy) * lw + x + dx) as usize];
+                let (a, b, c, d) = (at(0, 0), at(1, 0), at(0, 1), at(1, 1));
+                [0, 1, 2, 3].map(|k| (a[k] + b[k] + c[k] + d[k]) * 0.25)
+            })
+            .collect();
+        // Each row of the texture is w texels wide: the rest of a level's row is black padding.
+        for row in next.chunks(nw as usize) {
+            texels.extend_from_slice(row);
+            texels.extend(std::iter::repeat_n([0.0f32, 0.0, 0.0, 1.0], (w - nw) as usize));
+        }
+        (level, lw, lh) = (next, nw, nh);
+    }
+    Texture { size: [w, w - 1, 1], texels: Arc::from(texels) }
 }
 
 /// Six n × n faces (+X, −X, +Y, −Y, +Z, −Z) packed into the 3n × 2n cube-map atlas.
@@ -299,6 +343,7 @@ mod tests {
         assert!(load("missing.png", base).is_err());
         assert!(load("missing.hdr", base).is_err());
         assert!(load("sky:0", base).is_err());
+        assert!(load("env:missing.png", base).is_err());
         assert!(load("cube:a.png,b.png", base).is_err());
         assert!(load("cube:a.png,b.png,c.png,d.png,e.png,f.png", base).is_err());
     }
@@ -307,7 +352,24 @@ mod tests {
     fn sky_maps_hold_the_sky_along_their_texel_centres() {
         let base = Path::new(".");
         let sky = load("sky:16", base).unwrap();
-        assert_eq!(sky.size, [32, 16, 1]);
+        // Level 0, 32 × 16, with its chain below: 16 + 8 + 4 + 2 + 1 rows.
+        assert_eq!(sky.size, [32, 31, 1]);
+        // Level 1's texel (3, 2), at row 16 + 2, is the mean of level 0's (6..8, 4..6).
+        let level0 = |x: u32, y: u32| sky.texels[(y * 32 + x) as usize];
+        let mean = [0, 1, 2, 3]
+            .map(|k| (level0(6, 4)[k] + level0(7, 4)[k] + level0(6, 5)[k] + level0(7, 5)[k]) * 0.25);
+        assert_eq!(sky.texels[(18 * 32 + 3) as usize], mean);
+        // The last level, 2 × 1 at row 30, holds the means of the two halves of the map.
+        let half = |x0: u32| {
+            let sum: f64 = (0..16)
+                .flat_map(|y| (x0..x0 + 16).map(move |x| (x, y)))
+                .map(|(x, y)| f64::from(level0(x, y)[2]))
+                .sum();
+            sum / 256.0
+        };
+        assert!((f64::from(sky.texels[30 * 32][2]) - half(0)).abs() < 1e-5);
+        assert!((f64::from(sky.texels[30 * 32 + 1][2]) - half(16)).abs() < 1e-5);
+        assert_eq!(sky.texels[30 * 32 + 2], [0.0, 0.0, 0.0, 1.0]);
         // The top rows are sky near the zenith, the bottom ones ground checks.
         let top = sky.texels[0];
         assert!(top[2] < 0.81 && top[2] > 0.79 && top[0] < 0.2, "{top:?}");
@@ -316,6 +378,7 @@ mod tests {
         // The sun, S = (1, 1, -1)/√3: s = atan(1, 1)/2π + ½ = 0.625, t = acos(1/√3)/π = 0.304:
         // texel (80, 19) of sky:64, whose centre is 1.1° from S.
         let large = load("sky:64", base).unwrap();
+        assert_eq!(large.size, [128, 127, 1]);
         assert_eq!(large.texels[(19 * 128 + 80) as usize], [4.0, 3.6, 3.0, 1.0]);
         assert_ne!(large.texels[(19 * 128 + 90) as usize], [4.0, 3.6, 3.0, 1.0]);
         // The cube map's face texels agree with the formula along their own directions.

@@ -8,7 +8,7 @@
 
 use crate::support;
 
-use patina_runtime::image::{Image, Thresholds};
+use patina_runtime::image::{Image, Thresholds, compare};
 use patina_runtime::scene::ParamValue;
 use support::gallery::{at, both, cpu, scene};
 
@@ -30,9 +30,40 @@ fn disc_mean(image: &Image, cx: f64, cy: f64, r: f64, c: usize) -> f64 {
 #[test]
 fn shinymetal_mirrors_the_sky_alike_on_both_backends() {
     let s = scene("shinymetal", 128, 72);
-    let image = match both("shinymetal", &s, Thresholds::default()) {
+    // The sky:64 sphere's mip level comes from the footprint of the reflected direction, from
+    // screen derivatives: differences across the 2 x 2 quad on the GPU (helper invocations off
+    // the sphere at its silhouette), analytic on the CPU. So the whole image is compared with a
+    // looser hard fail (measured at 128 x 72: 9 pixels over 0.004, the largest 0.028) and the
+    // interior, pixels whose 3 x 3 neighbourhood is covered in both images, with the default
+    // thresholds (measured: 2 pixels over 0.004, the largest 0.0085).
+    let silhouette = Thresholds { hard_fail: 0.05, ..Thresholds::default() };
+    let image = match both("shinymetal", &s, silhouette) {
         Some(r) => {
             println!("shinymetal: GPU vs CPU {:?}", r.comparison);
+            let background = s.output.background;
+            let covered = |image: &Image, x: u32, y: u32| {
+                at(image, x, y).iter().zip(background).any(|(a, b)| (a - b).abs() > 1e-3)
+            };
+            let (w, h) = (r.cpu.width, r.cpu.height);
+            let interior = |x: u32, y: u32| {
+                x > 0
+                    && y > 0
+                    && x + 1 < w
+                    && y + 1 < h
+                    && (x - 1..=x + 1)
+                        .all(|i| (y - 1..=y + 1).all(|j| covered(&r.cpu, i, j) && covered(&r.gpu, i, j)))
+            };
+            let mask = |image: &Image| Image {
+                width: w,
+                height: h,
+                pixels: (0..w * h)
+                    .map(|i| if interior(i % w, i / w) { image.pixels[i as usize] } else { [0.0; 4] })
+                    .collect(),
+            };
+            let t = Thresholds::default();
+            let inside = compare(&mask(&r.cpu), &mask(&r.gpu), &t).unwrap();
+            println!("shinymetal interior: GPU vs CPU {inside:?}");
+            assert!(inside.passes(&t), "shinymetal interior: {inside:?}");
             r.cpu
         }
         None => cpu("shinymetal", &s),

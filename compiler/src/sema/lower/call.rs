@@ -139,6 +139,12 @@ impl Lowerer<'_> {
         } else {
             user
         };
+        if candidates.is_empty() && callee.name == "option" {
+            return self.option_call(args, span, out);
+        }
+        if candidates.is_empty() && callee.name == "bake" {
+            return self.bake_call(callee, args, span, out);
+        }
         if candidates.is_empty()
             && let Some(d) = crate::sema::unsupported::call(callee)
         {
@@ -270,6 +276,135 @@ impl Lowerer<'_> {
                 Some(self.push_expr(ExprKind::Builtin(b, converted), b.ret, span))
             }
         }
+    }
+
+    /// `float option(string name, output T value)` (RI 3.2 section 15.8): 1 with `value` written
+    /// for the options a render answers, 0 (with a warning) for any other name. `"Format"` writes
+    /// the image's width, height and pixel aspect ratio (1) to a `float[3]`, read per draw from the
+    /// raster space (so a resize recompiles nothing); `"Exposure"` writes gain and gamma, 1 and 1,
+    /// to a `float[2]`.
+    fn option_call(&mut self, args: &[ast::Expr], span: Span, out: &mut Block) -> Option<ExprId> {
+        use crate::ir::types::Base;
+        use crate::ir::{Literal, Place};
+        let [name, target] = args else {
+            self.error(Diagnostic::error(
+                Code::NoMatchingOverload,
+                format!("`option` takes 2 arguments, found {}", args.len()),
+                span,
+                "expected `option(\"name\", variable)`",
+            ));
+            return None;
+        };
+        let ast::ExprKind::String(option) = &name.kind else {
+            self.error(Diagnostic::error(
+                Code::TypeMismatch,
+                "`option` needs the option's name as a string literal",
+                name.span,
+                "not a string literal",
+            ));
+            return None;
+        };
+        let t = self.expr(target, None, out)?;
+        let place = self.place_of(t)?;
+        let ty = self.ty(t);
+        let float =
+            |this: &mut Self, x: f64| this.push_expr(ExprKind::Literal(Literal::Float(x)), Type::FLOAT, span);
+        let (values, want): (Vec<ExprId>, &str) = match option.as_str() {
+            "Format" => {
+                let s = |this: &mut Self, text: &str| {
+                    this.push_expr(ExprKind::Literal(Literal::String(text.into())), Type::STRING, span)
+                };
+                let (ndc, raster) = (s(self, "NDC"), s(self, "raster"));
+                let (one, zero) = (float(self, 1.0), float(self, 0.0));
+                let point = Type::of(Base::Point);
+                let corner = self.push_expr(ExprKind::Construct(vec![one, one, zero]), point, span);
+                let transform = builtins::find("transform", &[Type::STRING, Type::STRING, point])?;
+                let size =
+                    self.push_expr(ExprKind::Builtin(transform, vec![ndc, raster, corner]), point, span);
+                let mut values = Vec::new();
+                for axis in ["xcomp", "ycomp"] {
+                    let comp = builtins::find(axis, &[point])?;
+                    let c = self.push_expr(ExprKind::Builtin(comp, vec![size]), Type::FLOAT, span);
+                    let round = builtins::find("round", &[Type::FLOAT])?;
+                    values.push(self.push_expr(ExprKind::Builtin(round, vec![c]), Type::FLOAT, span));
+                }
+                values.push(float(self, 1.0));
+                (values, "float[3]")
+            }
+            "Exposure" => (vec![float(self, 1.0), float(self, 1.0)], "float[2]"),
+            other => {
+                self.error(
+                    Diagnostic::warning(
+                        Code::RendererQuery,
+                        format!("`option` does not know `{other}`: it returns 0 and leaves the variable as it is"),
+                        name.span,
+                        "unknown option",
+                    )
+                    .with_note("the options answered are \"Format\" (float[3]: width, height, pixel aspect) and \"Exposure\" (float[2]: gain, gamma)"),
+                );
+                return Some(float(self, 0.0));
+            }
+        };
+        if ty.base != Base::Float || ty.array != Some(values.len() as u32) {
+            self.error(Diagnostic::error(
+                Code::TypeMismatch,
+                format!("option `{option}` is a `{want}`, found `{ty}`"),
+                target.span,
+                format!("expected a `{want}` variable"),
+            ));
+            return None;
+        }
+        for (i, value) in values.into_iter().enumerate() {
+            let index = self.push_expr(ExprKind::Literal(Literal::Int(i as i32)), Type::of(Base::Int), span);
+            self.store(Place::Index(Box::new(place.clone()), index), value, span, out);
+        }
+        Some(float(self, 1.0))
+    }
+
+    /// `void bake(string file, float s, float t, T value)` (PRMan): its arguments are checked, and
+    /// the call does nothing on either backend, with a warning (bake files are not written).
+    fn bake_call(
+        &mut self,
+        callee: &ast::Ident,
+        args: &[ast::Expr],
+        span: Span,
+        out: &mut Block,
+    ) -> Option<ExprId> {
+        use crate::ir::types::Base;
+        let lowered: Vec<ExprId> = args.iter().map(|a| self.expr(a, None, out)).collect::<Option<_>>()?;
+        let valid = lowered.len() == 4 && {
+            let types: Vec<Type> = lowered.iter().map(|&a| self.ty(a)).collect();
+            types[0] == Type::STRING
+                && convert::implicit_cost(types[1], Type::FLOAT).is_some()
+                && convert::implicit_cost(types[2], Type::FLOAT).is_some()
+                && !types[3].is_array()
+                && matches!(
+                    types[3].base,
+                    Base::Float | Base::Color | Base::Point | Base::Vector | Base::Normal
+                )
+        };
+        if !valid {
+            let types: Vec<String> = lowered.iter().map(|&a| self.ty(a).to_string()).collect();
+            self.error(Diagnostic::error(
+                Code::NoMatchingOverload,
+                format!("no overload of `bake` takes ({})", types.join(", ")),
+                span,
+                "expected `bake(string file, float s, float t, value)`",
+            ));
+            return None;
+        }
+        self.error(
+            Diagnostic::warning(
+                Code::IgnoredFeature,
+                "`bake` does nothing: bake files are not written",
+                callee.span,
+                "ignored",
+            )
+            .with_note(
+                "Patina renders one image per run and has no bake pass; compute the value where it is used",
+            ),
+        );
+        Some(self.push_expr(ExprKind::Construct(Vec::new()), Type::VOID, span))
     }
 
     /// Checks the optional `"name", value` arguments of a texture lookup and appends each pair the

@@ -107,6 +107,14 @@ pub(super) fn surface_key(
     key
 }
 
+/// `key` (a surface's) with the atmosphere bound after it, if any.
+pub(super) fn with_atmosphere(mut key: String, atmosphere: Option<&ShaderRef>) -> String {
+    if let Some(a) = atmosphere {
+        let _ = write!(key, "|atmosphere {}", shader_key(a, &[]));
+    }
+    key
+}
+
 /// FNV-1a: a short stand-in for a file's text in a key.
 fn hash(text: &str) -> u64 {
     text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))

@@ -6,6 +6,7 @@ mod cache;
 mod cpu;
 pub mod frame;
 mod gpu;
+pub mod imager;
 pub mod program;
 mod progress;
 mod textures;
@@ -103,6 +104,9 @@ pub struct Prepared {
     pub height: u32,
     /// Samples per pixel along each axis.
     pub supersample: u32,
+    /// The imager run over the finished image, if the scene has one (then `background` is
+    /// transparent black, so that alpha is the coverage, and the imager keeps the scene's).
+    pub imager: Option<imager::ImagerProgram>,
 }
 
 /// How a scene's shaders are compiled.
@@ -176,17 +180,27 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
             },
         };
         let key = cache::surface_key(&o.surface, o.displacement.as_ref(), &light_keys, specialize);
+        let key = cache::with_atmosphere(key, o.atmosphere.as_ref());
         let surface = match cache.surface(&key) {
-            Some(cached) => {
-                program::rebind_surface(cached, &o.surface, o.displacement.as_ref(), world_to_camera, &frame)?
-            }
+            Some(cached) => program::rebind_shaded(
+                cached,
+                &o.surface,
+                o.displacement.as_ref(),
+                o.atmosphere.as_ref(),
+                world_to_camera,
+                &frame,
+            )?,
             None => {
                 let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera, specialize)?;
                 let displacement = match &o.displacement {
                     Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera, specialize)?),
                     None => None,
                 };
-                let surface = program::surface_program(loaded, displacement, &lights, &frame)?;
+                let atmosphere = match &o.atmosphere {
+                    Some(a) => Some(program::load(a, ShaderKind::Volume, world_to_camera, specialize)?),
+                    None => None,
+                };
+                let surface = program::shaded_program(loaded, displacement, atmosphere, &lights, &frame)?;
                 cache.keep_surface(key, &surface);
                 surface
             }
@@ -205,7 +219,17 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
         objects.push(Object { surface, mesh, frame, textures });
     }
     let [r, g, b, a] = scene.output.background;
-    Ok(Prepared { lights, objects, background: [r * a, g * a, b * a, a], width, height, supersample: n })
+    let mut background = [r * a, g * a, b * a, a];
+    let imager = match &scene.imager {
+        Some(shader) => {
+            let loaded = program::load(shader, ShaderKind::Imager, world_to_camera, specialize)?;
+            let program = imager::imager_program(loaded, background)?;
+            background = [0.0; 4];
+            Some(program)
+        }
+        None => None,
+    };
+    Ok(Prepared { lights, objects, background, width, height, supersample: n, imager })
 }
 
 /// Renders a prepared scene on a backend (the GPU one needs `gpu`), downsampled to the scene's
@@ -231,7 +255,12 @@ pub fn render_with_progress(
         (Backend::Gpu, None) => return Err(RenderError::Gpu("no GPU adapter".into())),
         (Backend::Cpu, _) => cpu::render(prepared, prepared.width, prepared.height, progress)?,
     };
-    Ok(downsample(&image, prepared.supersample))
+    let image = downsample(&image, prepared.supersample);
+    match (&prepared.imager, backend, gpu) {
+        (Some(program), Backend::Gpu, Some(gpu)) => imager::gpu(gpu, program, &image),
+        (Some(program), _, _) => imager::cpu(program, &image),
+        (None, _, _) => Ok(image),
+    }
 }
 
 /// The mean of each `n × n` block of samples.

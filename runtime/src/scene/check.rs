@@ -20,12 +20,20 @@ pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> R
             Ok(Light { shader: shader(light, &at, loc, base)?, line: line(loc, &at) })
         })
         .collect::<Result<Vec<_>, SceneError>>()?;
-    let objects = (raw.object.iter().enumerate())
+    let atmosphere =
+        raw.atmosphere.as_ref().map(|a| shader(a, &field(&["atmosphere"]), loc, base)).transpose()?;
+    let imager = raw.imager.as_ref().map(|a| shader(a, &field(&["imager"]), loc, base)).transpose()?;
+    let mut objects = (raw.object.iter().enumerate())
         .map(|(i, object)| self::object(object, &field(&["object"]).index(i), loc, base))
         .collect::<Result<Vec<_>, SceneError>>()?;
+    for object in &mut objects {
+        if object.atmosphere.is_none() {
+            object.atmosphere.clone_from(&atmosphere);
+        }
+    }
     let knobs = super::knob::knobs(&raw.knob, &objects, loc, base)?;
     let compare = raw.compare.as_ref().map(|c| compare(c, loc)).transpose()?;
-    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, knobs, compare })
+    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, knobs, imager, compare })
 }
 
 fn line(loc: &Locator, at: &Field) -> usize {
@@ -167,6 +175,8 @@ fn object(raw: &RawObject, at: &Field, loc: &Locator, base: &Path) -> Result<Obj
     let surface = shader_parts(&raw.shader, &raw.name, &raw.params, &raw.animate, at, loc, base)?;
     let displacement =
         raw.displacement.as_ref().map(|d| shader(d, &at.key("displacement"), loc, base)).transpose()?;
+    let atmosphere =
+        raw.atmosphere.as_ref().map(|a| shader(a, &at.key("atmosphere"), loc, base)).transpose()?;
     let colour = |value: Option<[f32; 3]>, name: &str| -> Result<[f32; 3], SceneError> {
         let value = value.unwrap_or([1.0; 3]);
         finite(&value, &at.key(name), loc)?;
@@ -180,6 +190,7 @@ fn object(raw: &RawObject, at: &Field, loc: &Locator, base: &Path) -> Result<Obj
         detail,
         surface,
         displacement,
+        atmosphere,
         color: colour(raw.color, "color")?,
         opacity: colour(raw.opacity, "opacity")?,
         transform: raw.transform.clone(),

@@ -31,6 +31,9 @@
 //! params = { Kd = 0.8, roughness = 0.2, texturename = "grid.png", twosided = true }
 //! animate = ["roughness"]      # parameters kept dynamic (the others set here are compiled in)
 //! displacement = { shader = "../shaders/bumpy.sl", params = { Km = 0.05 } }   # (optional)
+//! atmosphere = { shader = "../shaders/fog.sl", name = "fog", params = { falloff = 4 } }
+//!                              # a volume shader run after the surface on its Ci and Oi
+//!                              # (optional; default: the scene's [atmosphere], if any)
 //! color = [1.0, 0.5, 0.2]      # Cs (default white)
 //! opacity = [1, 1, 1]          # Os (default opaque)
 //! transform = [              # (default: none)
@@ -38,6 +41,16 @@
 //!     { rotate = { angle = 30, axis = [0, 1, 0] } },
 //!     { scale = [2, 2, 2] },
 //! ]
+//!
+//! [atmosphere]                 # (optional) every object's atmosphere, unless it has its own
+//! shader = "../shaders/fog.sl"
+//! name = "fog"
+//! params = { falloff = 4, background = [0.5, 0.6, 0.7] }
+//!
+//! [imager]                     # (optional) an imager shader over the finished image, per pixel:
+//! shader = "../shaders/imagers.sl"   # P is the raster position (pixel centres), s and t are
+//! name = "background"                # in [0, 1] across the image, alpha is the coverage
+//! params = { bgcolor = [0.2, 0.3, 0.4] }
 //!
 //! [[knob]]                     # any number: what `patina bench` sweeps (error against time)
 //! kind = "steps"               # steps | step_size | octaves | samples | antialias | table_size |
@@ -112,6 +125,8 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// The quality knobs that `patina bench` sweeps, in file order.
     pub knobs: Vec<Knob>,
+    /// The imager shader run over the finished image, pixel by pixel (`[imager]`), if any.
+    pub imager: Option<ShaderRef>,
     /// How closely the GPU must match the CPU reference, when the scene says (OSL's thresholds
     /// otherwise: [`Scene::thresholds`]).
     pub compare: Option<Compare>,
@@ -207,6 +222,9 @@ pub struct Object {
     pub surface: ShaderRef,
     /// The displacement shader, if any.
     pub displacement: Option<ShaderRef>,
+    /// The atmosphere (volume) shader run after the surface on its colour and opacity: the
+    /// object's own `atmosphere`, or the scene's `[atmosphere]`, if any.
+    pub atmosphere: Option<ShaderRef>,
     /// `Cs`.
     pub color: [f32; 3],
     /// `Os`.

@@ -20,6 +20,8 @@ pub(crate) struct RawScene {
     #[serde(default)]
     pub knob: Vec<RawKnob>,
     pub compare: Option<RawCompare>,
+    pub atmosphere: Option<RawShader>,
+    pub imager: Option<RawShader>,
 }
 
 #[derive(Deserialize)]
@@ -92,6 +94,7 @@ pub(crate) struct RawObject {
     #[serde(default)]
     pub animate: Vec<String>,
     pub displacement: Option<RawShader>,
+    pub atmosphere: Option<RawShader>,
     pub color: Option<[f32; 3]>,
     pub opacity: Option<[f32; 3]>,
     #[serde(default)]

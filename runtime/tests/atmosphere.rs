@@ -1,0 +1,129 @@
+//! Atmosphere (volume) shaders after the surface and imager shaders over the finished image, on
+//! both backends, against their formulas at pixels. Needs a GPU adapter (lavapipe in CI) unless
+//! PATINA_GPU=off (then only the CPU reference is checked).
+
+use patina_runtime::image::{Image, Thresholds, compare};
+use patina_runtime::render::{self, Backend};
+use patina_runtime::scene::Scene;
+
+fn scene(name: &str) -> Scene {
+    let path = format!("{}/tests/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    Scene::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The CPU reference's image, and the GPU's compared with it (OSL's thresholds) when there is one.
+fn render_both(label: &str, scene: &Scene) -> Image {
+    let prepared = render::prepare(scene).unwrap_or_else(|e| panic!("{label}: {e}"));
+    let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
+    assert!(cpu.pixels.iter().flatten().all(|x| x.is_finite()), "{label}: not finite");
+    if let Some(gpu) = patina_runtime::gpu::for_tests() {
+        let image =
+            render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
+        let t = Thresholds::default();
+        let c = compare(&cpu, &image, &t).unwrap();
+        assert!(c.passes(&t), "{label}: GPU and CPU images differ: {c:?}");
+    }
+    cpu
+}
+
+fn at(image: &Image, x: u32, y: u32) -> [f32; 4] {
+    image.pixels[(y * image.width + x) as usize]
+}
+
+#[test]
+fn fog_mixes_towards_its_colour_by_distance() {
+    let fogged = scene("fog");
+    let mut clear = fogged.clone();
+    for o in &mut clear.objects {
+        o.atmosphere = None;
+    }
+    let with = render_both("fog", &fogged);
+    let without = render_both("fog without the atmosphere", &clear);
+    // The centre pixel looks straight at the sphere's nearest point, 4 units from the eye (the
+    // tessellation puts it a little further): d = 1 - exp(-4 / falloff).
+    let d = 1.0 - (-4.0f32 / 4.0).exp();
+    let (c, f) = (at(&without, 16, 16), at(&with, 16, 16));
+    for (k, fog) in [0.5f32, 0.6, 0.7].into_iter().enumerate() {
+        let expected = c[k] + (fog - c[k]) * d;
+        assert!((f[k] - expected).abs() < 0.01, "channel {k}: {} against {expected}", f[k]);
+    }
+    assert!((f[3] - 1.0).abs() < 1e-6, "alpha {}", f[3]);
+    // A corner pixel sees no surface: the background, untouched.
+    assert_eq!(at(&with, 0, 0), at(&without, 0, 0));
+    assert!((at(&with, 0, 0)[2] - 0.08).abs() < 1e-6);
+}
+
+#[test]
+fn an_object_can_have_its_own_atmosphere() {
+    let mut s = scene("fog");
+    let own = s.objects[0].atmosphere.clone().map(|mut a| {
+        a.name = Some("depthcue".into());
+        a.params.clear();
+        a.params.insert("mindistance".into(), patina_runtime::scene::ParamValue::Number(3.0));
+        a.params.insert("maxdistance".into(), patina_runtime::scene::ParamValue::Number(6.0));
+        a
+    });
+    s.objects[0].atmosphere = own;
+    let with = render_both("depthcue", &s);
+    let mut clear = s.clone();
+    clear.objects[0].atmosphere = None;
+    let without = render_both("depthcue without", &clear);
+    // Depth 4 between 3 and 6: a third of the way to black.
+    let (c, f) = (at(&without, 16, 16), at(&with, 16, 16));
+    for k in 0..3 {
+        let expected = c[k] * (1.0 - 1.0 / 3.0);
+        assert!((f[k] - expected).abs() < 0.01, "channel {k}: {} against {expected}", f[k]);
+    }
+}
+
+#[test]
+fn the_background_imager_fills_uncovered_pixels() {
+    let s = scene("imager");
+    let image = render_both("background imager", &s);
+    // A corner sees no surface: alpha 0 before the imager, so exactly the background colour.
+    assert_eq!(at(&image, 0, 0), [0.2, 0.3, 0.4, 1.0]);
+    // The centre is covered: the imager adds nothing, and the surface's colour is the one drawn
+    // without an imager.
+    let mut plain = s.clone();
+    plain.imager = None;
+    let without = render_both("no imager", &plain);
+    assert_eq!(at(&without, 16, 16)[3], 1.0);
+    assert_eq!(at(&image, 16, 16), at(&without, 16, 16));
+    // Without an imager the uncovered pixels are the scene's background (opaque black).
+    assert_eq!(at(&without, 0, 0), [0.0, 0.0, 0.0, 1.0]);
+}
+
+#[test]
+fn exposure_and_vignette_follow_their_formulas() {
+    let mut s = scene("imager");
+    let plain = {
+        let mut p = s.clone();
+        p.imager = None;
+        render_both("plain", &p)
+    };
+    let imager = s.imager.as_mut().unwrap();
+    imager.name = Some("exposure".into());
+    imager.params.clear();
+    imager.params.insert("gain".into(), patina_runtime::scene::ParamValue::Number(2.0));
+    imager.params.insert("gamma".into(), patina_runtime::scene::ParamValue::Number(2.2));
+    let exposed = render_both("exposure", &s);
+    let (c, e) = (at(&plain, 16, 16), at(&exposed, 16, 16));
+    for k in 0..3 {
+        let expected = (2.0 * c[k]).powf(1.0 / 2.2);
+        assert!((e[k] - expected).abs() < 1e-4, "channel {k}: {} against {expected}", e[k]);
+    }
+    let imager = s.imager.as_mut().unwrap();
+    imager.name = Some("vignette".into());
+    imager.params.clear();
+    let vignetted = render_both("vignette", &s);
+    // Pixel (16, 10), on the sphere: s = 16.5 / 33 = 0.5, t = 10.5 / 33; r = 2 |t - 0.5| / sqrt(2).
+    let (x, y) = (16, 10);
+    let t = (y as f32 + 0.5) / 33.0;
+    let r = 2.0 * (t - 0.5).abs() / 2f32.sqrt();
+    let (c, v) = (at(&plain, x, y), at(&vignetted, x, y));
+    assert_eq!(c[3], 1.0, "the pixel is covered");
+    for k in 0..3 {
+        let expected = c[k] * (1.0 - 0.5 * r * r);
+        assert!((v[k] - expected).abs() < 1e-4, "channel {k}: {} against {expected}", v[k]);
+    }
+}

@@ -403,49 +403,6 @@ fn shade_batch(
         _ => vec!["Ci"],
     };
     let mut outs =
-            light.eval_points(n, &inputs, wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
-        if !has_l {
-            outs.insert(0, vec![0.0; n * 3]);
-        }
-        let (mut l, cl) = (outs[0].clone(), outs[1].clone());
-        for x in &mut l {
-            *x = -*x;
-        }
-        if stanford {
-            let mut h = vec![0f64; n * 3];
-            for i in 0..n {
-                let lv = Vec3::new(l[i * 3] as f32, l[i * 3 + 1] as f32, l[i * 3 + 2] as f32);
-                let lv = lv / lv.length();
-                l[i * 3..i * 3 + 3].copy_from_slice(&[f64::from(lv.x), f64::from(lv.y), f64::from(lv.z)]);
-                if let Some(e) = &e {
-                    let ev = Vec3::new(e[i * 3] as f32, e[i * 3 + 1] as f32, e[i * 3 + 2] as f32);
-                    let hv = (lv + ev) / (lv + ev).length();
-                    h[i * 3..i * 3 + 3].copy_from_slice(&[f64::from(hv.x), f64::from(hv.y), f64::from(hv.z)]);
-                }
-            }
-            columns.push((format!("H[{k}]"), h));
-            let cl4: Vec<f64> = (0..n).flat_map(|i| [cl[i * 3], cl[i * 3 + 1], cl[i * 3 + 2], 1.0]).collect();
-            columns.push((format!("Cl[{k}]"), cl4));
-        } else {
-            columns.push((format!("Cl[{k}]"), cl));
-        }
-        columns.push((format!("L[{k}]"), l));
-    }
-    let inputs: Vec<(&str, &[f64])> = columns
-        .iter()
-        .filter(|(name, _)| {
-            program.slot(name).is_some_and(|id| program.slots().any(|(i, s)| i == id && !s.uniform))
-        })
-        .map(|(name, c)| (name.as_str(), c.as_slice()))
-        .collect();
-    let wanted: Vec<&str> = match output {
-        Output::Result => vec!["result"],
-        // With an atmosphere the interface's output is Ci and Oi whatever the surface writes.
-        _ if surface.atmosphere.is_some() && program.slot("Oi").is_none() => vec!["Ci"],
-        Output::CiOi => vec!["Ci", "Oi"],
-        _ => vec!["Ci"],
-    };
-    let mut outs =
         fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
     // The atmosphere, between the surface and the eye: on the surface's Ci and Oi (opaque when
     // the surface writes none), its own Ci and Oi are the fragment's.

@@ -190,6 +190,8 @@ fn fragment_stage(
         .iter()
         .map(|l| {
             let mut e = Evaluator::<f32>::new(&l.cpu);
+            // A light's lookups (shadow maps) read the textures loaded for the surface it lights.
+            bind_textures(&mut e, &l.cpu, object);
             set_spaces(&mut e, &l.cpu, &frame.light_spaces);
             for (name, value) in &l.values {
                 let _ = e.set(name, value);

@@ -9,6 +9,7 @@ mod gpu;
 pub mod imager;
 pub mod program;
 mod progress;
+pub mod shadow;
 mod textures;
 
 use glam::Mat4;
@@ -162,6 +163,9 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
         light_keys.push(key);
     }
     let mut objects = Vec::new();
+    // Shadow maps by name, drawn when an object first reads them (render/shadow.rs).
+    let mut shadow_maps: std::collections::HashMap<String, patina_compiler::backend::cpu::Texture> =
+        std::collections::HashMap::new();
     for (i, o) in scene.objects.iter().enumerate() {
         let object_to_world = scene.object_transform(i);
         let spaces = program::spaces(world_to_camera, object_to_world, &camera, width, height);
@@ -214,7 +218,20 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
             .interface
             .textures
             .iter()
-            .map(|t| Ok((t.name.clone(), textures::load(&t.name, base)?)))
+            .map(|t| {
+                let texture = match scene.shadow_maps.iter().find(|m| m.name == t.name) {
+                    Some(map) => match shadow_maps.get(&t.name) {
+                        Some(made) => made.clone(),
+                        None => {
+                            let made = shadow::make(scene, map, world_to_camera)?;
+                            shadow_maps.insert(t.name.clone(), made.clone());
+                            made
+                        }
+                    },
+                    None => textures::load(&t.name, base)?,
+                };
+                Ok((t.name.clone(), texture))
+            })
             .collect::<Result<_, RenderError>>()?;
         objects.push(Object { surface, mesh, frame, textures });
     }

@@ -31,9 +31,10 @@ pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> R
             object.atmosphere.clone_from(&atmosphere);
         }
     }
-    let knobs = super::knob::knobs(&raw.knob, &objects, loc, base)?;
+    let shadow_maps = super::shadow::shadow_maps(&raw.shadow, &lights, loc)?;
+    let knobs = super::knob::knobs(&raw.knob, &objects, &lights, shadow_maps.len(), loc, base)?;
     let compare = raw.compare.as_ref().map(|c| compare(c, loc)).transpose()?;
-    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, knobs, imager, compare })
+    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, knobs, imager, shadow_maps, compare })
 }
 
 fn line(loc: &Locator, at: &Field) -> usize {

@@ -1,15 +1,23 @@
 //! Quality knobs: the dimensions along which a scene trades error for run time, as `patina bench`
-//! sweeps them. A knob is a list of settings, each a few assignments to shader parameters or to
-//! `output.supersample`, and a reference that the settings are measured against.
+//! sweeps them. A knob is a list of settings, each a few assignments to shader parameters (of
+//! objects, or of lights with `light.NAME`), to `output.supersample` or to
+//! `shadow.resolution`, and a reference that the settings are measured against.
 
 use super::error::{Field, Locator, SceneError, field};
 use super::schema::{RawKnob, RawReference, RawSetting};
-use super::{Object, ParamValue, Scene};
+use super::{Light, Object, ParamValue, Scene};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
 /// The key of a setting that assigns the supersampling factor instead of a shader parameter.
 pub const SUPERSAMPLE_KEY: &str = "output.supersample";
+
+/// The key of a setting that assigns the resolution of every shadow map (`[[shadow]]`).
+pub const SHADOW_RESOLUTION_KEY: &str = "shadow.resolution";
+
+/// The prefix of a setting's key that assigns a light-shader parameter (`light.samples`) of every
+/// light whose `params` set it.
+pub const LIGHT_PREFIX: &str = "light.";
 
 /// What a knob varies (the categories of issue 10; the plot and the tables name them).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Deserialize)]
@@ -93,6 +101,15 @@ pub enum Assignment {
     },
     /// `output.supersample`.
     Supersample(u32),
+    /// `shadow.resolution`: every shadow map's resolution.
+    ShadowResolution(u32),
+    /// `light.NAME`: a light-shader parameter of every light whose `params` set it.
+    LightParam {
+        /// The parameter.
+        name: String,
+        /// The value.
+        value: f64,
+    },
 }
 
 /// What a knob's settings are measured against.
@@ -143,6 +160,18 @@ impl Scene {
         for a in &setting.assignments {
             match a {
                 Assignment::Supersample(n) => scene.output.supersample = *n,
+                Assignment::ShadowResolution(n) => {
+                    for m in &mut scene.shadow_maps {
+                        m.resolution = *n;
+                    }
+                }
+                Assignment::LightParam { name, value } => {
+                    for l in &mut scene.lights {
+                        if l.shader.params.contains_key(name) {
+                            l.shader.params.insert(name.clone(), ParamValue::Number(*value));
+                        }
+                    }
+                }
                 Assignment::Param { name, object, value } => {
                     for (i, o) in scene.objects.iter_mut().enumerate() {
                         let chosen = match object {
@@ -165,6 +194,8 @@ pub(super) fn knob(
     raw: &RawKnob,
     at: &Field,
     objects: &[Object],
+    lights: &[Light],
+    shadow_maps: usize,
     loc: &Locator,
     base: &Path,
 ) -> Result<Knob, SceneError> {
@@ -177,7 +208,7 @@ pub(super) fn knob(
             return Err(loc.invalid(&at.key("object"), message));
         }
     };
-    let check = Check { objects, object, loc };
+    let check = Check { objects, lights, shadow_maps, object, loc };
     let param = match &raw.param {
         Some(p) if p.trim().is_empty() => {
             return Err(loc.invalid(&at.key("param"), "the parameter name is empty"));
@@ -228,6 +259,8 @@ pub(super) fn knob(
 /// What checking a knob's settings needs.
 struct Check<'a> {
     objects: &'a [Object],
+    lights: &'a [Light],
+    shadow_maps: usize,
     object: Option<usize>,
     loc: &'a Locator<'a>,
 }
@@ -262,6 +295,21 @@ impl Check<'_> {
                 _ => Err(self.loc.invalid(at, "output.supersample is a whole number in 1..=16")),
             };
         }
+        if key == SHADOW_RESOLUTION_KEY {
+            let range = f64::from(super::shadow::MIN_RESOLUTION)..=f64::from(super::shadow::MAX_RESOLUTION);
+            return match value {
+                _ if self.shadow_maps == 0 => Err(self.loc.invalid(at, "the scene has no `[[shadow]]` map")),
+                v if v.fract() == 0.0 && range.contains(&v) => Ok(Assignment::ShadowResolution(v as u32)),
+                _ => Err(self.loc.invalid(at, "shadow.resolution is a whole number in 8..=4096")),
+            };
+        }
+        if let Some(name) = key.strip_prefix(LIGHT_PREFIX) {
+            if !self.lights.iter().any(|l| l.shader.params.contains_key(name)) {
+                let message = format!("no light's `params` set `{name}`");
+                return Err(self.loc.invalid(at, message));
+            }
+            return Ok(Assignment::LightParam { name: name.to_string(), value });
+        }
         // Without an object, the knob reaches the objects whose `params` set the parameter: the
         // scene file then says which objects it applies to.
         if self.object.is_none() && !self.objects.iter().any(|o| o.surface.params.contains_key(key)) {
@@ -278,13 +326,15 @@ impl Check<'_> {
 pub(super) fn knobs(
     raw: &[RawKnob],
     objects: &[Object],
+    lights: &[Light],
+    shadow_maps: usize,
     loc: &Locator,
     base: &Path,
 ) -> Result<Vec<Knob>, SceneError> {
     let mut knobs: Vec<Knob> = Vec::new();
     for (i, r) in raw.iter().enumerate() {
         let at = field(&["knob"]).index(i);
-        let k = knob(r, &at, objects, loc, base)?;
+        let k = knob(r, &at, objects, lights, shadow_maps, loc, base)?;
         if knobs.iter().any(|other| other.name == k.name) {
             return Err(loc.invalid(&at, format!("a second knob named `{}`", k.name)));
         }

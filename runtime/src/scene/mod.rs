@@ -71,10 +71,25 @@
 //! ]
 //! reference = { scene = "exact.toml", label = "exact" }   # or a setting { label, set }
 //!
+//! [[shadow]]                   # any number: a shadow map, a depth pass from a light
+//! name = "spot.shad"           # what shaders look up: shadow("spot.shad", Ps) (a light's shadowname)
+//! light = 0                    # which light's `from` and `to` (world space) place its camera
+//! resolution = 512             # texels along each side, 8..=4096 (default 512)
+//! bias = 0.04                  # depth bias of lookups that give no "bias" (default 0)
+//! fov = 60                     # degrees (default: twice the light's `coneangle` plus 10)
+//! near = 0.05                  # clipping distances (default 0.05 and 1000)
+//! far = 1000
+//!
 //! [compare]                    # optional: how closely the GPU must match the CPU reference
 //! hard_fail = 0.5              # (fail, hard_fail, max_failing_fraction: default OSL's, see
 //! reason = "silhouettes"       #  image::Thresholds); the reason is required and shown
 //! ```
+//!
+//! Besides surface parameters and `output.supersample`, a knob's setting may assign
+//! `"shadow.resolution"` (every shadow map's resolution) and `"light.NAME"` (parameter NAME of
+//! every light whose `params` set it, e.g. `"light.samples"`). A shadow map is drawn from the
+//! undisplaced meshes by the CPU rasterizer, once per render, and the same texture goes to both
+//! backends (`render::shadow`); only perspective (spot-style) maps are made.
 //!
 //! Parameter values are numbers, arrays of numbers, strings or booleans ([`ParamValue`]); the
 //! shader's declaration gives them their type. The transformation list concatenates like
@@ -92,11 +107,15 @@ mod check;
 mod error;
 mod knob;
 mod schema;
+mod shadow;
 mod value;
 
 pub(crate) use error::io_message;
 pub use error::{SceneError, SceneErrorKind};
-pub use knob::{Assignment, Knob, KnobKind, Reference, SUPERSAMPLE_KEY, Setting};
+pub use knob::{
+    Assignment, Knob, KnobKind, LIGHT_PREFIX, Reference, SHADOW_RESOLUTION_KEY, SUPERSAMPLE_KEY, Setting,
+};
+pub use shadow::ShadowMap;
 pub use value::{ParamValue, TransformStep};
 
 use crate::camera::Camera;
@@ -125,6 +144,8 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// The quality knobs that `patina bench` sweeps, in file order.
     pub knobs: Vec<Knob>,
+    /// The shadow maps the renderer makes by depth passes from lights (`[[shadow]]`).
+    pub shadow_maps: Vec<ShadowMap>,
     /// The imager shader run over the finished image, pixel by pixel (`[imager]`), if any.
     pub imager: Option<ShaderRef>,
     /// How closely the GPU must match the CPU reference, when the scene says (OSL's thresholds

@@ -19,6 +19,8 @@ pub(crate) struct RawScene {
     pub object: Vec<RawObject>,
     #[serde(default)]
     pub knob: Vec<RawKnob>,
+    #[serde(default)]
+    pub shadow: Vec<RawShadowMap>,
     pub compare: Option<RawCompare>,
     pub atmosphere: Option<RawShader>,
     pub imager: Option<RawShader>,
@@ -144,4 +146,17 @@ pub(crate) struct RawCompare {
     pub hard_fail: Option<f32>,
     pub max_failing_fraction: Option<f32>,
     pub reason: String,
+}
+
+/// A `[[shadow]]` table: a shadow map made by a depth pass from a light.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawShadowMap {
+    pub name: String,
+    pub light: i64,
+    pub resolution: Option<i64>,
+    pub fov: Option<f32>,
+    pub near: Option<f32>,
+    pub far: Option<f32>,
+    pub bias: Option<f32>,
 }

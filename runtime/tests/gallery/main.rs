@@ -14,6 +14,7 @@ mod fur;
 mod gases;
 mod hypertexture;
 mod patterns;
+mod shadows;
 mod soft_sphere;
 mod solid;
 mod stanford;
@@ -39,6 +40,7 @@ const SCENES: &[&str] = &[
     "star",
     "planet",
     "shinymetal",
+    "shadowed_teapot",
 ];
 
 /// The other example scenes: the renderer's own examples, tested in `runtime/tests/render.rs`.
@@ -51,6 +53,7 @@ const TEST_SOURCES: &[&str] = &[
     include_str!("gases.rs"),
     include_str!("hypertexture.rs"),
     include_str!("patterns.rs"),
+    include_str!("shadows.rs"),
     include_str!("soft_sphere.rs"),
     include_str!("solid.rs"),
     include_str!("stanford.rs"),

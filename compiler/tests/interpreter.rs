@@ -261,6 +261,13 @@ fn option_format_reads_the_resolution_from_the_raster_space() {
 }
 
 #[test]
+fn printf_runs_in_the_interpreter_without_changing_results() {
+    let src = "surface t() {\n    if (s > 0.5) printf(\"s=%f i=%d c=%c\\n\", s, 2, color(s, 0, 1));\n    Ci = color(s, 0, 0);\n}";
+    let out = run(src, 3, &[("s", &[0.25, 0.75, 1.0])], &["Ci"]);
+    assert_eq!(out[0], vec![0.25, 0.0, 0.0, 0.75, 0.0, 0.0, 1.0, 0.0, 0.0]);
+}
+
+#[test]
 fn light_construct_arguments_are_converted_and_counted() {
     // Integer angles are floats, as for any float argument (this used to reach the lowering as an
     // integer and panic it).

@@ -138,3 +138,46 @@ fn bake_is_accepted_as_a_no_op_with_a_warning() {
     let (errors, _, text) = run("surface s() {\n    bake(1, s, t, Ci);\n}\n");
     assert_eq!(errors, ["E0503"], "{text}");
 }
+
+#[test]
+fn printf_and_format_are_checked_against_the_format() {
+    let src = "surface s() {\n    printf(\"%f %d %p %c %s %%\\n\", s, 3, P, Cs, \"x\");\n    string name = format(\"map%d.%s\", 7, \"tx\");\n    Ci = texture(name, s, t);\n}\n";
+    let (errors, warnings, text) = run(src);
+    assert!(errors.is_empty(), "{text}");
+    assert_eq!(warnings, ["`printf` prints only when the shader runs in the CPU interpreter"], "{text}");
+    let checked = check_source("shader.sl", src, &MemoryLoader::default());
+    let shader = &checked.program.shaders[0];
+    let names: Vec<String> = shader
+        .exprs
+        .iter()
+        .filter_map(|e| match &e.kind {
+            patina_compiler::ir::ExprKind::Literal(patina_compiler::ir::Literal::String(s)) => {
+                Some(s.to_string())
+            }
+            _ => None,
+        })
+        .collect();
+    assert!(names.contains(&"map7.tx".to_string()), "{names:?}");
+    let (errors, _, text) = run("surface s() {\n    printf(\"%f %f\", s);\n}\n");
+    assert_eq!(errors, ["E0503"], "{text}");
+    assert!(text.contains("the format has 2 conversions, and 1 value follow"), "{text}");
+    let (errors, _, text) = run("surface s() {\n    printf(\"%c\", s);\n}\n");
+    assert_eq!(errors, ["E0505"], "{text}");
+    assert!(text.contains("`%c` prints a colour, found `float`"), "{text}");
+    let (errors, _, text) = run("surface s() {\n    string n = format(\"%f\", s);\n}\n");
+    assert_eq!(errors, ["E0505"], "{text}");
+    assert!(text.contains("`format` needs values known when the shader is compiled"), "{text}");
+}
+
+#[test]
+fn printf_formats_as_rsl() {
+    use patina_compiler::sema::builtins::{PrintValue, printf_conversions, printf_format};
+    assert_eq!(printf_conversions("%f %5.2d %% %p"), ['f', 'd', 'p']);
+    let values = [
+        PrintValue::Numbers(vec![0.5]),
+        PrintValue::Numbers(vec![-3.7]),
+        PrintValue::Numbers(vec![1.0, 2.0, 3.0]),
+        PrintValue::Text("ok".into()),
+    ];
+    assert_eq!(printf_format("%f %d [%.1p] %s 100%%", &values), "0.500000 -3 [1.0 2.0 3.0] ok 100%");
+}

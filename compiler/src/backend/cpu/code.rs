@@ -233,6 +233,20 @@ pub enum Inst {
     Texel { texture: u32, channel: u8, dst: Reg, x: Reg, y: Reg, z: Reg },
     /// `dst` (integer file, uniform) = the size of texture `texture` along `axis`.
     TexSize { texture: u32, axis: u8, dst: Reg },
+    /// `printf`: in each lane of the execution mask, `format` with the lane's values, one line on
+    /// stderr (`exec::print_line` limits how many).
+    Printf { format: String, args: Vec<PrintArg> },
+}
+
+/// One value of a `printf`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PrintArg {
+    /// A string, known when the program was compiled.
+    Text(String),
+    /// Components in the float file.
+    Floats(Vec<Reg>),
+    /// Components in the integer file, read as signed integers or not.
+    Ints(Vec<Reg>, bool),
 }
 
 /// Structured control flow over instructions.

@@ -148,6 +148,79 @@ pub fn honoured_options(name: &str) -> &'static [&'static str] {
     }
 }
 
+/// One value `printf` or `format` prints.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PrintValue {
+    /// A number or the components of a point, colour or matrix.
+    Numbers(Vec<f64>),
+    /// A string.
+    Text(String),
+}
+
+/// The conversions of a `printf` format, in order (`%%` is none): `f`, `g`, `e`, `d`, `i` print a
+/// number, `p`, `v`, `n`, `c` a triple, `m` a matrix, `s` a string. Flags, width and precision
+/// (`%5.2f`) are accepted and skipped. An unknown conversion character is returned as it is.
+pub fn printf_conversions(format: &str) -> Vec<char> {
+    let mut out = Vec::new();
+    let mut chars = format.chars();
+    while let Some(c) = chars.next() {
+        if c != '%' {
+            continue;
+        }
+        let conv = chars.by_ref().find(|c| !matches!(c, '0'..='9' | '.' | '-' | '+' | ' ' | '#'));
+        match conv {
+            Some('%') | None => {}
+            Some(c) => out.push(c),
+        }
+    }
+    out
+}
+
+/// `format` applied to `values` (one per conversion of [`printf_conversions`]): numbers print with
+/// six decimals as C's `%f` does, `%d` rounds toward zero, triples and matrices print their
+/// components separated by spaces.
+pub fn printf_format(format: &str, values: &[PrintValue]) -> String {
+    let mut out = String::new();
+    let mut values = values.iter();
+    let mut chars = format.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c != '%' {
+            out.push(c);
+            continue;
+        }
+        let mut spec = String::new();
+        while let Some(&d) = chars.peek() {
+            if !matches!(d, '0'..='9' | '.' | '-' | '+' | ' ' | '#') {
+                break;
+            }
+            spec.push(d);
+            chars.next();
+        }
+        let precision = spec.split_once('.').and_then(|(_, p)| p.parse::<usize>().ok()).unwrap_or(6);
+        match chars.next() {
+            Some('%') => out.push('%'),
+            None => out.push('%'),
+            Some(conv) => match values.next() {
+                Some(PrintValue::Text(s)) => out.push_str(s),
+                Some(PrintValue::Numbers(xs)) => {
+                    let parts: Vec<String> = xs
+                        .iter()
+                        .map(|x| match conv {
+                            'd' | 'i' => format!("{}", x.trunc() as i64),
+                            'e' => format!("{x:.precision$e}"),
+                            'g' => format!("{x}"),
+                            _ => format!("{x:.precision$}"),
+                        })
+                        .collect();
+                    out.push_str(&parts.join(" "));
+                }
+                None => {}
+            },
+        }
+    }
+    out
+}
+
 /// The built-in table, parsed on first use.
 pub fn builtins() -> &'static Builtins {
     static TABLE: OnceLock<Builtins> = OnceLock::new();

@@ -6,12 +6,15 @@
 //! of this table; keep the two in step.
 //!
 //! Left out on purpose:
-//! - `printf` and `format`: their further arguments may be of any type, and the notation has no
-//!   untyped variadics (nor does a GPU have a console to print to).
-//! - The optional `"name", value` parameter lists of `texture`, `environment`, `shadow`,
-//!   `filterstep` (`"blur"`, `"width"`, `"swidth"`, `"fill"`, ...): untyped pairs again.
+//! - The notation has no untyped variadics: `printf` and `format` are listed with `float...`, and
+//!   `sema/lower/call.rs` checks their values against the format's conversions instead.
+//! - The optional `"name", value` arguments of `texture`, `environment`, `shadow` are not in the
+//!   lines: `builtins::options` lists them and `sema/lower/call.rs` checks them after the
+//!   positional arguments (`builtins::honoured_options` says which have an effect). `filterstep`
+//!   takes none.
+//! - `option` (answered in `sema/lower/call.rs`) and `bake` (a no-op there) are not in the lines.
 //! - `trace`, `textureinfo`, message passing (`surface`, `lightsource`, ...) and renderer queries
-//!   (`attribute`, `option`, `rendererinfo`): rejected by name in syntax/unsupported.rs.
+//!   (`attribute`, `rendererinfo`): rejected by name in sema/unsupported.rs.
 //! - PRMan's resizable-array functions (`arraylength`, `resize`, `push`, ...): not in RI 3.2, and
 //!   Patina's arrays have a fixed size.
 
@@ -75,6 +78,11 @@ pub const SIGNATURES: &[&str] = &[
     "color random() [fragment]",
     "point random() [fragment]",
     "vector random() [fragment]",
+    // `printf` and `format` take values of any type after the format (checked against its
+    // conversions by `sema/lower/call.rs`, which bypasses overload resolution for them); the
+    // lines give the call its IR form.
+    "void printf(string, float...)",
+    "string format(string, float...)",
     // Internal: `random()` lowered where a uniform value is wanted (RSL: `uniform float x =
     // random()` is one value per primitive): the same hash, of a fixed point index instead of the
     // point's, so one value per draw.

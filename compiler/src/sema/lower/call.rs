@@ -134,6 +134,9 @@ impl Lowerer<'_> {
             }
             _ => (args, &[][..]),
         };
+        if builtin_call && matches!(callee.name.as_str(), "printf" | "format") {
+            return self.printf_call(callee, args, span, out);
+        }
         let candidates: Vec<Candidate<'_>> = if builtin_call {
             builtins::builtins().overloads(&callee.name).iter().map(Candidate::Builtin).collect()
         } else {
@@ -359,6 +362,146 @@ impl Lowerer<'_> {
             self.store(Place::Index(Box::new(place.clone()), index), value, span, out);
         }
         Some(float(self, 1.0))
+    }
+
+    /// `void printf(string format, ...)` and `string format(string format, ...)` (RI 3.2 section
+    /// 15.9): the values are checked against a literal format's conversions. `printf` prints in the
+    /// CPU interpreter and is left out by the GPU backend (warned here); `format` is a string, and
+    /// strings are compile-time values, so its values must be literals.
+    fn printf_call(
+        &mut self,
+        callee: &ast::Ident,
+        args: &[ast::Expr],
+        span: Span,
+        out: &mut Block,
+    ) -> Option<ExprId> {
+        use crate::ir::Literal;
+        use crate::ir::types::Base;
+        let name = callee.name.as_str();
+        let lowered: Vec<ExprId> = args.iter().map(|a| self.expr(a, None, out)).collect::<Option<_>>()?;
+        let Some((&format, values)) = lowered.split_first() else {
+            self.error(Diagnostic::error(
+                Code::NoMatchingOverload,
+                format!("`{name}` needs a format string"),
+                span,
+                format!("expected `{name}(\"...\", values)`"),
+            ));
+            return None;
+        };
+        self.coerce(format, Type::STRING, "the format")?;
+        let literal = match &self.expr_ref(format).kind {
+            ExprKind::Literal(Literal::String(text)) => Some(text.to_string()),
+            _ => None,
+        };
+        if let Some(text) = &literal {
+            let conversions = builtins::printf_conversions(text);
+            if conversions.len() != values.len() {
+                self.error(
+                    Diagnostic::error(
+                        Code::NoMatchingOverload,
+                        format!(
+                            "the format has {} conversion{}, and {} value{} follow it",
+                            conversions.len(),
+                            if conversions.len() == 1 { "" } else { "s" },
+                            values.len(),
+                            if values.len() == 1 { "" } else { "s" }
+                        ),
+                        span,
+                        "one value per `%` conversion",
+                    )
+                    .with_label(self.span_of(format), "the format"),
+                );
+                return None;
+            }
+            for (&c, &v) in conversions.iter().zip(values) {
+                let ty = self.ty(v);
+                let (fits, what) = match c {
+                    'f' | 'g' | 'e' | 'd' | 'i' => {
+                        (matches!(ty.base, Base::Float | Base::Int | Base::Uint | Base::Bool), "a number")
+                    }
+                    'p' | 'v' | 'n' => (
+                        matches!(ty.base, Base::Point | Base::Vector | Base::Normal),
+                        "a point, vector or normal",
+                    ),
+                    'c' => (ty.base == Base::Color, "a colour"),
+                    'm' => (matches!(ty.base, Base::Matrix4 | Base::Matrix3), "a matrix"),
+                    's' => (ty.base == Base::String, "a string"),
+                    other => {
+                        self.error(
+                            Diagnostic::error(
+                                Code::TypeMismatch,
+                                format!("`%{other}` is not a conversion of `{name}`"),
+                                self.span_of(format),
+                                "in this format",
+                            )
+                            .with_help("the conversions are %f %g %e %d (numbers), %p %v %n (points), %c (colours), %m (matrices), %s (strings) and %%"),
+                        );
+                        return None;
+                    }
+                };
+                if !fits || ty.is_array() {
+                    self.error(Diagnostic::error(
+                        Code::TypeMismatch,
+                        format!("`%{c}` prints {what}, found `{ty}`"),
+                        self.span_of(v),
+                        format!("this is `{ty}`"),
+                    ));
+                    return None;
+                }
+            }
+        }
+        let b = builtins::builtins().overloads(name).first()?;
+        if name == "printf" {
+            self.error(
+                Diagnostic::warning(
+                    Code::IgnoredFeature,
+                    "`printf` prints only when the shader runs in the CPU interpreter",
+                    callee.span,
+                    "left out of GPU code",
+                )
+                .with_note("a GPU has no console: the WGSL backend leaves the call out; `patina eval` and CPU renders print it to stderr"),
+            );
+            return Some(self.push_expr(ExprKind::Builtin(b, lowered), Type::VOID, span));
+        }
+        // `format`: known now, or not at all.
+        let mut printed = Vec::with_capacity(values.len());
+        for &v in values {
+            let value = match &self.expr_ref(v).kind {
+                ExprKind::Literal(Literal::Float(x)) => builtins::PrintValue::Numbers(vec![*x]),
+                ExprKind::Literal(Literal::Int(x)) => builtins::PrintValue::Numbers(vec![f64::from(*x)]),
+                ExprKind::Literal(Literal::Uint(x)) => builtins::PrintValue::Numbers(vec![f64::from(*x)]),
+                ExprKind::Literal(Literal::Bool(x)) => {
+                    builtins::PrintValue::Numbers(vec![f64::from(u8::from(*x))])
+                }
+                ExprKind::Literal(Literal::String(s)) => builtins::PrintValue::Text(s.to_string()),
+                _ => {
+                    self.error(
+                        Diagnostic::error(
+                            Code::TypeMismatch,
+                            "`format` needs values known when the shader is compiled",
+                            self.span_of(v),
+                            "not a literal",
+                        )
+                        .with_note(
+                            "strings are compile-time values in Patina, so a formatted string must be too",
+                        ),
+                    );
+                    return None;
+                }
+            };
+            printed.push(value);
+        }
+        let Some(text) = literal else {
+            self.error(Diagnostic::error(
+                Code::TypeMismatch,
+                "`format` needs a literal format string",
+                self.span_of(format),
+                "not a literal",
+            ));
+            return None;
+        };
+        let result = builtins::printf_format(&text, &printed);
+        Some(self.push_expr(ExprKind::Literal(Literal::String(result.into())), Type::STRING, span))
     }
 
     /// `void bake(string file, float s, float t, T value)` (PRMan): its arguments are checked, and

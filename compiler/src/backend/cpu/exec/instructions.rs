@@ -3,7 +3,9 @@
 
 use super::kernels::{File, Lanes, View, map1, map2, map3};
 use super::{LANES, Machine, Mask};
-use crate::backend::cpu::code::{Binary, Compare, Convert, Inst, IntBinary, IntUnary, Reg, Ternary, Unary};
+use crate::backend::cpu::code::{
+    Binary, Compare, Convert, Inst, IntBinary, IntUnary, PrintArg, Reg, Ternary, Unary,
+};
 use crate::backend::cpu::scalar::{self as s, Real};
 
 impl<F: Real> Machine<F> {
@@ -93,6 +95,28 @@ impl<F: Real> Machine<F> {
                 } else {
                     let values: [F; LANES] = std::array::from_fn(fetch);
                     *self.floats.lanes_mut(dst) = values;
+                }
+            }
+            Inst::Printf { ref format, ref args } => {
+                for lane in (0..LANES).filter(|&l| mask.has(l)) {
+                    let values: Vec<crate::sema::builtins::PrintValue> = args
+                        .iter()
+                        .map(|a| match a {
+                            PrintArg::Text(s) => crate::sema::builtins::PrintValue::Text(s.clone()),
+                            PrintArg::Floats(regs) => crate::sema::builtins::PrintValue::Numbers(
+                                regs.iter().map(|r| self.floats.at(*r, lane).to_f64()).collect(),
+                            ),
+                            PrintArg::Ints(regs, signed) => crate::sema::builtins::PrintValue::Numbers(
+                                regs.iter()
+                                    .map(|r| {
+                                        let x = self.ints.at(*r, lane);
+                                        if *signed { f64::from(x as i32) } else { f64::from(x) }
+                                    })
+                                    .collect(),
+                            ),
+                        })
+                        .collect();
+                    print_line(&crate::sema::builtins::printf_format(format, &values));
                 }
             }
             Inst::TexSize { texture, axis, dst } => {
@@ -355,6 +379,23 @@ fn lanes_copy<T: Copy>(file: &File<T>, r: Reg) -> Copied<T> {
     match file.read(r) {
         Lanes::Varying(v) => Copied::Varying(*v),
         Lanes::Uniform(x) => Copied::Uniform(x),
+    }
+}
+
+/// The most `printf` lines one process writes; past it, one line says the rest were dropped.
+pub const MAX_PRINTED_LINES: u64 = 100;
+
+/// Writes one line of `printf` output to stderr, counting lines per process: after
+/// [`MAX_PRINTED_LINES`] lines a single `... further printf output left out` line follows, and
+/// nothing more.
+fn print_line(line: &str) {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static PRINTED: AtomicU64 = AtomicU64::new(0);
+    let n = PRINTED.fetch_add(1, Ordering::Relaxed);
+    if n < MAX_PRINTED_LINES {
+        eprintln!("{line}");
+    } else if n == MAX_PRINTED_LINES {
+        eprintln!("... further printf output left out (more than {MAX_PRINTED_LINES} lines)");
     }
 }
 

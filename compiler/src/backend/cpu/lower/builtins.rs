@@ -3,7 +3,7 @@
 
 use super::expr::pick;
 use super::{Lower, POINT_INDEX, Val};
-use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, Reg, Ternary, Unary};
+use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, PrintArg, Reg, Ternary, Unary};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
@@ -123,6 +123,26 @@ impl Lower<'_> {
                         .collect()
                 };
                 Val::Float(regs)
+            }
+            "printf" => {
+                let format = match &vals[0] {
+                    Val::Str(s) => s.to_string(),
+                    _ => String::new(),
+                };
+                let printed = args[1..]
+                    .iter()
+                    .zip(&vals[1..])
+                    .map(|(a, v)| match v {
+                        Val::Str(s) => PrintArg::Text(s.to_string()),
+                        Val::Int(regs) => {
+                            PrintArg::Ints(regs.clone(), self.shader.expr(*a).ty.base == Base::Int)
+                        }
+                        Val::Float(regs) => PrintArg::Floats(regs.clone()),
+                        Val::Void => PrintArg::Text(String::new()),
+                    })
+                    .collect();
+                self.emit.printf(format, printed);
+                Val::Void
             }
             "xcomp" | "ycomp" | "zcomp" => {
                 let i = ["xcomp", "ycomp", "zcomp"].iter().position(|n| *n == b.name).unwrap_or(0);

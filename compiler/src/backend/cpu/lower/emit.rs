@@ -242,6 +242,11 @@ impl Emitter {
         dst
     }
 
+    /// `printf` of `format` with `args`.
+    pub fn printf(&mut self, format: String, args: Vec<crate::backend::cpu::code::PrintArg>) {
+        self.push(Inst::Printf { format, args });
+    }
+
     pub fn random(&mut self, site: u32, point: Reg) -> Reg {
         let dst = self.temp(true, false);
         self.push(Inst::Random { dst, site, point });
@@ -381,5 +386,18 @@ fn relocate_inst(inst: &mut Inst, f: &Files) {
             }
         }
         Inst::TexSize { dst, .. } => fix(dst, false, f),
+        Inst::Printf { args, .. } => {
+            for arg in args {
+                match arg {
+                    crate::backend::cpu::code::PrintArg::Text(_) => {}
+                    crate::backend::cpu::code::PrintArg::Floats(regs) => {
+                        regs.iter_mut().for_each(|r| fix(r, true, f))
+                    }
+                    crate::backend::cpu::code::PrintArg::Ints(regs, _) => {
+                        regs.iter_mut().for_each(|r| fix(r, false, f))
+                    }
+                }
+            }
+        }
     }
 }

@@ -8,9 +8,10 @@
 // lighting_shaders.sl is one).
 //
 // Departures from Appendix A, all documented in docs/stdlib/lighting.md:
-//   * shinymetal has no environment term: environment maps are not implemented on either backend
-//     (the built-in environment() is refused), so it is metal with the Kr parameter kept for
-//     compatibility (unused) and texturename ignored.
+//   * shinymetal has no environment term: environment maps work in rendered scenes
+//     (examples/shaders/shinymetal.sl is Appendix A's shader with its term), but this library's
+//     shaders are also checked on the GPU compute harness, which binds no textures; so it is metal
+//     with the Kr parameter kept for compatibility (unused) and texturename ignored.
 //   * pointlight and spotlight divide by max(L . L, 1e-30) rather than L . L, so a surface point
 //     at the light position gets a large finite value rather than an infinity; spotlight's
 //     cosangle is clamped to [0, 1] before pow and computed with lighting_normalize.
@@ -96,9 +97,9 @@ surface metal(float Ka = 1; float Ks = 1; float roughness = .1)
     Ci = Os * Cs * (Ka * ambient() + Ks * specular(Nf, V, roughness));
 }
 
-// Shiny metal: metal plus, in Appendix A, Kr * environment(texturename, reflect(I, Nf)). Without
-// environment maps (not implemented on either backend) it is metal; Kr and texturename are kept
-// so that scenes written for the standard shader load.
+// Shiny metal: metal plus, in Appendix A, Kr * environment(texturename, reflect(I, Nf)). Here it
+// is metal (see the departures above); Kr and texturename are kept so that scenes written for the
+// standard shader load.
 // sweep: Ka in [0, 1e4]; Ks in [0, 1e4]; Kr in [0, 1e4]
 surface shinymetal(float Ka = 1; float Ks = 1; float Kr = 1; float roughness = .1;
                    string texturename = "")

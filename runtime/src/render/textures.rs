@@ -41,9 +41,11 @@
 //!   An environment lookup reads such a map trilinearly by its footprint; any other lat-long map
 //!   at level 0.
 //!
-//! Any other name is a file relative to the scene's directory: PNG (8 or 16 bits), or Radiance
-//! HDR (`.hdr`, kept in linear floats). An environment lookup reads a texture three texels wide
-//! for every two tall as a cube-map atlas and any other one as a lat-long map (2:1).
+//! The empty name is no map: one black, transparent texel. Any other name is a file relative to
+//! the scene's directory: PNG (8 or 16 bits), or Radiance HDR (`.hdr`, kept in linear floats). An
+//! environment lookup reads a texture three texels wide for every two tall as a cube-map atlas,
+//! one w wide and w − 1 tall as a lat-long map with its mip chain, and any other one as a
+//! lat-long map (2:1) at level 0.
 
 use std::path::Path;
 use std::sync::Arc;
@@ -69,6 +71,10 @@ pub fn load(name: &str, base: &Path) -> Result<Texture, RenderError> {
                 }),
             }
         };
+    // No name: no map (RenderMan's default texture names are ""), one black transparent texel.
+    if name.is_empty() {
+        return Ok(Texture::default());
+    }
     let (kind, spec) = match name.split_once(':') {
         Some((k, n)) => (k, Some(n)),
         None => (name, None),
@@ -344,6 +350,7 @@ mod tests {
         assert!(load("missing.hdr", base).is_err());
         assert!(load("sky:0", base).is_err());
         assert!(load("env:missing.png", base).is_err());
+        assert_eq!(load("", base).unwrap(), Texture::default());
         assert!(load("cube:a.png,b.png", base).is_err());
         assert!(load("cube:a.png,b.png,c.png,d.png,e.png,f.png", base).is_err());
     }

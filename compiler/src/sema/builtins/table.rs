@@ -282,7 +282,11 @@ mod tests {
         assert!(random.iter().all(|b| b.rate == super::super::RateRule::Fragment));
         let diffuse = &table.overloads("diffuse")[0];
         assert_eq!(diffuse.context, super::super::Context::Surface);
-        assert!(table.overloads("printf").is_empty() && table.overloads("trace").is_empty());
+        assert!(table.overloads("trace").is_empty() && table.overloads("option").is_empty());
+        assert_eq!(table.overloads("printf")[0].ret, crate::ir::types::Type::VOID);
+        assert!(
+            table.overloads("__uniform_random").iter().all(|b| b.rate == super::super::RateRule::Uniform)
+        );
         let fresnel = table.overloads("fresnel");
         assert!(fresnel.iter().any(|b| b.params.len() == 7 && b.params[6].output));
         let affine = &table.overloads("affine")[0];

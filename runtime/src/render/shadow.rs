@@ -58,27 +58,85 @@ pub fn light_camera(scene: &Scene, map: &ShadowMap) -> Result<Camera, RenderErro
     Ok(Camera { from, to, up, fov_y_degrees: fov, near: map.near, far: map.far })
 }
 
+/// How a map sees the world: world to the light's camera space, and that to clip space (wgpu's:
+/// x, y in [−w, w], depth z/w in [0, 1]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightView {
+    /// World space to the light's camera space (looking down +z, left-handed).
+    pub view: Mat4,
+    /// The light's camera space to clip space: perspective, or orthographic (w = 1).
+    pub projection: Mat4,
+}
+
+/// One object's mesh in world space: its positions and triangles.
+type WorldMesh = (Vec<Vec3>, Vec<u32>);
+
+/// The meshes of `scene` in world space.
+fn world_meshes(scene: &Scene) -> Result<Vec<WorldMesh>, RenderError> {
+    (scene.objects.iter().enumerate())
+        .map(|(i, o)| {
+            let mesh = o
+                .build_mesh()
+                .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;
+            let m = scene.object_transform(i);
+            Ok((mesh.positions.iter().map(|p| m.transform_point3(Vec3::from(*p))).collect(), mesh.indices))
+        })
+        .collect()
+}
+
+/// The view of `map`: [`light_camera`]'s, in perspective, or for an orthographic map a square
+/// window just wider than every mesh (5% margin) and a depth range just deeper.
+pub fn light_view(scene: &Scene, map: &ShadowMap) -> Result<LightView, RenderError> {
+    let meshes = if map.orthographic { world_meshes(scene)? } else { Vec::new() };
+    view_of(scene, map, &meshes)
+}
+
+fn view_of(
+    scene: &Scene,
+    map: &ShadowMap,
+    meshes: &[(Vec<Vec3>, Vec<u32>)],
+) -> Result<LightView, RenderError> {
+    let light = light_camera(scene, map)?;
+    let view = light.world_to_camera();
+    if !map.orthographic {
+        return Ok(LightView { view, projection: light.camera_to_clip(1.0) });
+    }
+    let (mut half, mut near, mut far) = (1e-3f32, f32::MAX, f32::MIN);
+    for p in meshes.iter().flat_map(|(p, _)| p) {
+        let q = view.transform_point3(*p);
+        if q.is_finite() {
+            half = half.max(q.x.abs()).max(q.y.abs());
+            (near, far) = (near.min(q.z), far.max(q.z));
+        }
+    }
+    if near > far {
+        (near, far) = (0.0, 1.0);
+    }
+    let (half, depth) = (half * 1.05, (far - near).max(1e-3) * 1.1);
+    let near = near - 0.05 * depth;
+    let projection = Mat4::from_cols(
+        Vec4::new(1.0 / half, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, 1.0 / half, 0.0, 0.0),
+        Vec4::new(0.0, 0.0, 1.0 / depth, 0.0),
+        Vec4::new(0.0, 0.0, -near / depth, 1.0),
+    );
+    Ok(LightView { view, projection })
+}
+
 /// Draws the shadow map `map` of `scene` for a shader whose current space is the one
 /// `world_to_camera` leads to.
 pub fn make(scene: &Scene, map: &ShadowMap, world_to_camera: Mat4) -> Result<Texture, RenderError> {
-    let light = light_camera(scene, map)?;
+    let meshes = world_meshes(scene)?;
+    let light = view_of(scene, map, &meshes)?;
     let n = map.resolution.max(8);
-    let world_to_light = light.world_to_camera();
-    let light_to_clip = light.camera_to_clip(1.0);
+    let to_clip = light.projection * light.view;
     let mut fb = Framebuffer::new(n, n, [EMPTY_DEPTH; 4]);
     let options = DrawOptions { depth_write: true, ..DrawOptions::default() };
-    for (i, o) in scene.objects.iter().enumerate() {
-        let mesh = o
-            .build_mesh()
-            .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;
-        let to_light = world_to_light * scene.object_transform(i);
-        let to_clip = light_to_clip * to_light;
-        let clip: Vec<[f32; 4]> =
-            mesh.positions.iter().map(|p| (to_clip * Vec3::from(*p).extend(1.0)).to_array()).collect();
-        let depth: Vec<f32> =
-            mesh.positions.iter().map(|p| to_light.transform_point3(Vec3::from(*p)).z).collect();
+    for (i, (positions, indices)) in meshes.iter().enumerate() {
+        let clip: Vec<[f32; 4]> = positions.iter().map(|p| (to_clip * p.extend(1.0)).to_array()).collect();
+        let depth: Vec<f32> = positions.iter().map(|p| light.view.transform_point3(*p).z).collect();
         let varyings = Varyings::smooth(1, &depth);
-        raster::draw(&mut fb, &clip, &mesh.indices, &varyings, &options, |fragments, out| {
+        raster::draw(&mut fb, &clip, indices, &varyings, &options, |fragments, out| {
             for (o, z) in out.iter_mut().zip(fragments.values_of(0)) {
                 *o = [*z, *z, *z, 1.0];
             }
@@ -98,18 +156,18 @@ pub fn make(scene: &Scene, map: &ShadowMap, world_to_camera: Mat4) -> Result<Tex
 }
 
 /// The matrix from the shader's current space to the map's (x, y, depth, w): clip x, y and w of
-/// the light's camera, and its camera-space z as the depth.
-pub fn matrix(light: &Camera, world_to_camera: Mat4) -> Mat4 {
-    let camera_to_light = light.world_to_camera() * world_to_camera.inverse();
-    let clip = light.camera_to_clip(1.0) * camera_to_light;
+/// the light's view, and its camera-space z as the depth.
+pub fn matrix(light: &LightView, world_to_camera: Mat4) -> Mat4 {
+    let camera_to_light = light.view * world_to_camera.inverse();
+    let clip = light.projection * camera_to_light;
     Mat4::from_cols(clip.row(0), clip.row(1), camera_to_light.row(2), clip.row(3)).transpose()
 }
 
 /// Where the map sees `world` (a world-space point): the texel and the point's depth, `None`
 /// when it is behind the light or outside the map.
-pub fn project(light: &Camera, resolution: u32, world: Vec3) -> Option<([u32; 2], f32)> {
-    let view = light.world_to_camera().transform_point3(world);
-    let clip = light.camera_to_clip(1.0) * Vec4::from((view, 1.0));
+pub fn project(light: &LightView, resolution: u32, world: Vec3) -> Option<([u32; 2], f32)> {
+    let view = light.view.transform_point3(world);
+    let clip = light.projection * Vec4::from((view, 1.0));
     if clip.w <= 0.0 {
         return None;
     }
@@ -140,7 +198,8 @@ mod tests {
             near: 0.05,
             far: 1000.0,
         };
-        let m = matrix(&light, eye.world_to_camera());
+        let view = LightView { view: light.world_to_camera(), projection: light.camera_to_clip(1.0) };
+        let m = matrix(&view, eye.world_to_camera());
         // The light's target is at the map's centre, at depth |to - from|.
         let target = m * eye.world_to_camera().transform_point3(Vec3::ZERO).extend(1.0);
         assert!((target.x / target.w).abs() < 1e-5 && (target.y / target.w).abs() < 1e-5, "{target}");

@@ -356,6 +356,48 @@ mod tests {
     }
 
     #[test]
+    fn hdr_files_cube_faces_and_chains_load_from_files() {
+        let dir = std::env::temp_dir().join(format!("patina-textures-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // A 4 x 2 Radiance HDR file with values above 1 (powers of two survive RGBE exactly).
+        let values = [8.0f32, 0.5, 2.0, 1.0, 0.25, 4.0, 16.0, 0.125];
+        let rgb: Vec<image::Rgb<f32>> = values.iter().map(|&v| image::Rgb([v, v / 2.0, v / 4.0])).collect();
+        let file = std::fs::File::create(dir.join("map.hdr")).unwrap();
+        image::codecs::hdr::HdrEncoder::new(std::io::BufWriter::new(file)).encode(&rgb, 4, 2).unwrap();
+        let hdr = load("map.hdr", &dir).unwrap();
+        assert_eq!(hdr.size, [4, 2, 1]);
+        assert_eq!(hdr.texels[0], [8.0, 4.0, 2.0, 1.0]);
+        assert_eq!(hdr.texels[6], [16.0, 8.0, 4.0, 1.0]);
+        // With its chain: 4 x 3, level 1 (2 x 1) the means of the 2 x 2 blocks, padded to 4.
+        let chained = load("env:map.hdr", &dir).unwrap();
+        assert_eq!(chained.size, [4, 3, 1]);
+        assert_eq!(chained.texels[8][0], (8.0 + 0.5 + 0.25 + 4.0) / 4.0);
+        assert_eq!(chained.texels[9][0], (2.0 + 1.0 + 16.0 + 0.125) / 4.0);
+        assert_eq!(chained.texels[10], [0.0, 0.0, 0.0, 1.0]);
+        // Six 2 x 2 faces, face k's texels k/8 in red: the atlas puts +X, -X, +Y on top.
+        let names: Vec<String> = (0..6).map(|k| format!("face{k}.png")).collect();
+        for (k, name) in names.iter().enumerate() {
+            let v = k as f32 / 8.0;
+            let face = crate::image::Image { width: 2, height: 2, pixels: vec![[v, 0.0, 0.0, 1.0]; 4] };
+            face.write_png(dir.join(name)).unwrap();
+        }
+        let cube = load(&format!("cube:{}", names.join(",")), &dir).unwrap();
+        assert_eq!(cube.size, [6, 4, 1]);
+        let red = |x: u32, y: u32| (cube.texels[(y * 6 + x) as usize][0] * 8.0).round() as u32;
+        assert_eq!([red(0, 0), red(3, 1), red(5, 0), red(0, 2), red(2, 3), red(5, 3)], [0, 1, 2, 3, 4, 5]);
+        // Faces of different sizes, or not square, are one error naming the face.
+        let wide = crate::image::Image { width: 4, height: 2, pixels: vec![[0.0; 4]; 8] };
+        wide.write_png(dir.join("wide.png")).unwrap();
+        let bad = names[..5].join(",") + ",wide.png";
+        let message = load(&format!("cube:{bad}"), &dir).unwrap_err().to_string();
+        assert!(message.contains("wide.png") && message.contains("square"), "{message}");
+        // A chain needs a 2:1 map a power of two tall.
+        assert!(load("env:wide.png", &dir).is_ok());
+        assert!(load("env:face0.png", &dir).unwrap_err().to_string().contains("twice as wide"));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
     fn sky_maps_hold_the_sky_along_their_texel_centres() {
         let base = Path::new(".");
         let sky = load("sky:16", base).unwrap();

@@ -79,6 +79,8 @@
 //! fov = 60                     # degrees (default: twice the light's `coneangle` plus 10)
 //! near = 0.05                  # clipping distances (default 0.05 and 1000)
 //! far = 1000
+//! projection = "perspective"   # or "orthographic": parallel rays along from -> to, for distant
+//!                              # lights, over a window fitted to the meshes (default perspective)
 //!
 //! [compare]                    # optional: how closely the GPU must match the CPU reference
 //! hard_fail = 0.5              # (fail, hard_fail, max_failing_fraction: default OSL's, see
@@ -89,7 +91,7 @@
 //! `"shadow.resolution"` (every shadow map's resolution) and `"light.NAME"` (parameter NAME of
 //! every light whose `params` set it, e.g. `"light.samples"`). A shadow map is drawn from the
 //! undisplaced meshes by the CPU rasterizer, once per render, and the same texture goes to both
-//! backends (`render::shadow`); only perspective (spot-style) maps are made.
+//! backends (`render::shadow`); a point light's six-map cube is not made.
 //!
 //! Parameter values are numbers, arrays of numbers, strings or booleans ([`ParamValue`]); the
 //! shader's declaration gives them their type. The transformation list concatenates like

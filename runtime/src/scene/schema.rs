@@ -159,4 +159,5 @@ pub(crate) struct RawShadowMap {
     pub near: Option<f32>,
     pub far: Option<f32>,
     pub bias: Option<f32>,
+    pub projection: Option<String>,
 }

@@ -33,6 +33,9 @@ pub struct ShadowMap {
     pub far: f32,
     /// The depth bias of lookups that give no `"bias"` (default 0), in the light camera's units.
     pub bias: f32,
+    /// Parallel projection (`projection = "orthographic"`, for distant lights) instead of
+    /// perspective from the light's `from`.
+    pub orthographic: bool,
 }
 
 /// The `[[shadow]]` tables, checked against the lights.
@@ -94,7 +97,24 @@ pub(super) fn shadow_maps(
         if !bias.is_finite() {
             return Err(loc.invalid(&at.key("bias"), "the bias must be a finite number"));
         }
-        maps.push(ShadowMap { name: name.to_string(), light, resolution, fov: r.fov, near, far, bias });
+        let orthographic = match r.projection.as_deref().map(str::trim) {
+            None | Some("perspective") => false,
+            Some("orthographic") => true,
+            Some(other) => {
+                let message = format!("the projection is `perspective` or `orthographic`, found `{other}`");
+                return Err(loc.invalid(&at.key("projection"), message));
+            }
+        };
+        maps.push(ShadowMap {
+            name: name.to_string(),
+            light,
+            resolution,
+            fov: r.fov,
+            near,
+            far,
+            bias,
+            orthographic,
+        });
     }
     Ok(maps)
 }
@@ -114,7 +134,9 @@ mod tests {
         let scene = parse("name = \"a.shad\"\nlight = 0\nbias = 0.1").unwrap();
         let map = &scene.shadow_maps[0];
         assert_eq!((map.name.as_str(), map.light, map.resolution, map.bias), ("a.shad", 0, 512, 0.1));
-        assert_eq!((map.fov, map.near, map.far), (None, 0.05, 1000.0));
+        assert_eq!((map.fov, map.near, map.far, map.orthographic), (None, 0.05, 1000.0, false));
+        let ortho = parse("name = \"a\"\nlight = 0\nprojection = \"orthographic\"").unwrap();
+        assert!(ortho.shadow_maps[0].orthographic);
         for (table, says) in [
             ("name = \"a\"\nlight = 2", "there is no light 2"),
             ("name = \"a\"\nlight = -1", "there is no light -1"),
@@ -124,6 +146,10 @@ mod tests {
             ("name = \"a\"\nlight = 0\nfov = 180", "(0, 180)"),
             ("name = \"a\"\nlight = 0\nnear = 2\nfar = 1", "0 < near < far"),
             ("name = \"a\"\nlight = 0\nsize = 3", "size"),
+            (
+                "name = \"a\"\nlight = 0\nprojection = \"fisheye\"",
+                "`perspective` or `orthographic`, found `fisheye`",
+            ),
         ] {
             let e = parse(table).expect_err(table);
             assert!(e.contains(says) && !e.contains('\n'), "{table}: {e}");

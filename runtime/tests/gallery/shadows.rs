@@ -227,12 +227,15 @@ fn shadow_map_holds_the_nearest_depth_and_its_matrix() {
     let texture = shadow::make(&s, map, world_to_camera).unwrap();
     let n = map.resolution;
     assert_eq!(texture.size, [n, n + 1, 1]);
-    let light = shadow::light_camera(&s, map).unwrap();
-    // The matrix row: camera-space points land where the light camera projects them.
+    let light = shadow::light_view(&s, map).unwrap();
+    let from = shadow::light_camera(&s, map).unwrap().from;
+    // The matrix row: camera-space points land where the light camera projects them; then the
+    // bias.
     let m = shadow::matrix(&light, world_to_camera);
     for r in 0..4 {
         assert_eq!(texture.texels[(n * n) as usize + r], m.row(r).to_array());
     }
+    assert_eq!(texture.texels[(n * n) as usize + 4], [map.bias, 0.0, 0.0, 0.0]);
     // The teapot's top is the nearest surface through its texel, and the floor far from the
     // teapot is the nearest through its own.
     let teapot = Blocker::of(&s, 1);
@@ -246,8 +249,71 @@ fn shadow_map_holds_the_nearest_depth_and_its_matrix() {
     }
     // Where the teapot blocks the floor, the map holds the teapot's depth, well in front.
     let inside = Vec3::new(top.x, 0.45 * teapot.max.y, top.z);
-    let hit = light.from + (inside - light.from) * (light.from.y / (light.from.y - inside.y));
+    let hit = from + (inside - from) * (from.y / (from.y - inside.y));
     let ([x, y], floor_depth) = shadow::project(&light, n, hit).unwrap();
     let stored = texture.texels[(y * n + x) as usize][0];
     assert!(stored < floor_depth - 0.5, "stored {stored}, floor {floor_depth}");
+}
+
+#[test]
+fn orthographic_map_shadows_a_distant_light_along_parallel_rays() {
+    let mut s = scene("shadowed_teapot", W, H);
+    // The spot light becomes a distant one along the same direction, with an orthographic map.
+    let spot = s.lights[0].shader.clone();
+    s.lights[0].shader.path = spot.path.with_file_name("shadowdistant.sl");
+    s.lights[0].shader.name = Some("shadowdistant".into());
+    s.lights[0]
+        .shader
+        .params
+        .retain(|k, _| ["from", "to", "shadowname", "samples", "blur"].contains(&k.as_str()));
+    s.lights[0].shader.params.insert("intensity".into(), ParamValue::Number(0.9));
+    s.shadow_maps[0].orthographic = true;
+    s.shadow_maps[0].bias = 0.03;
+    let image = match both("shadowed_teapot, distant", &s, s.thresholds()) {
+        Some(r) => r.cpu,
+        None => cpu("shadowed_teapot, distant", &s),
+    };
+    let mut dark = s.clone();
+    dark.lights[0].shader.params.insert("intensity".into(), ParamValue::Number(0.0));
+    let dark = cpu("shadowed_teapot, distant off", &dark);
+    let mut unshadowed = s.clone();
+    unshadowed.lights[0].shader.params.insert("shadowname".into(), ParamValue::String(String::new()));
+    let unshadowed = cpu("shadowed_teapot, distant without the map", &unshadowed);
+    let point = |name: &str| match &spot.params[name] {
+        ParamValue::Numbers(v) => Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32),
+        other => panic!("{name}: {other:?}"),
+    };
+    // Towards the light: every ray is parallel to from - to.
+    let towards = (point("from") - point("to")).normalize() * 50.0;
+    let teapot = Blocker::of(&s, 1);
+    let camera = s.camera().from;
+    let offsets = [Vec3::ZERO, Vec3::X * 0.08, -Vec3::X * 0.08, Vec3::Z * 0.08, -Vec3::Z * 0.08];
+    let (mut blocked, mut clear) = (0, 0);
+    for y in 0..H {
+        for x in 0..W {
+            let Some(q) = floor_point(&s, x, y) else { continue };
+            if q.x.abs() > 4.5 || q.z.abs() > 4.5 || teapot.blocks(camera, q, 0.0) {
+                continue;
+            }
+            let hits = offsets.iter().filter(|o| teapot.blocks(q + **o, q + **o + towards, 0.2)).count();
+            let (shaded, lit, off) = (at(&image, x, y), at(&unshadowed, x, y), at(&dark, x, y));
+            if hits == offsets.len() {
+                blocked += 1;
+                assert!(
+                    (0..3).all(|c| (shaded[c] - off[c]).abs() < 1e-5),
+                    "({x}, {y}): {shaded:?} vs {off:?}"
+                );
+            } else if hits == 0
+                && !offsets.iter().any(|o| teapot.blocks(q + *o * 2.0, q + *o * 2.0 + towards, 0.0))
+            {
+                clear += 1;
+                assert!(
+                    (0..3).all(|c| (shaded[c] - lit[c]).abs() < 1e-5),
+                    "({x}, {y}): {shaded:?} vs {lit:?}"
+                );
+            }
+        }
+    }
+    println!("shadowed_teapot, distant: {blocked} pixels in full shadow, {clear} clear of it");
+    assert!(blocked > 40 && clear > 1000, "{blocked} blocked, {clear} clear");
 }

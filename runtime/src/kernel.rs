@@ -5,6 +5,7 @@
 use std::fmt;
 
 use patina_compiler::backend::cpu::LightBinding;
+use patina_compiler::backend::wgsl::interface::UniformSource;
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, KernelValue, compile_kernel};
 use patina_compiler::diag::Diagnostic;
 use patina_compiler::ir::Shader;
@@ -70,16 +71,19 @@ pub fn run_kernel(
 ) -> Result<Vec<Vec<f64>>, KernelError> {
     let mut diff = shader.clone();
     patina_compiler::opt::derivs::differentiate(&mut diff);
-    run_prepared(gpu, &diff, lights, &[], count, inputs, outputs)
+    run_prepared(gpu, &diff, lights, &[], &[], count, inputs, outputs)
 }
 
 /// As [`run_kernel`], for a shader already differentiated (`opt::prepare` or `differentiate`),
-/// with the values of its string parameters.
+/// with the values of its string parameters and the matrices of the named spaces it reads (from
+/// "current" space to each; a space not listed is the identity).
+#[allow(clippy::too_many_arguments)]
 pub fn run_prepared(
     gpu: &Gpu,
     shader: &Shader,
     lights: &[LightBinding],
     strings: &[(String, String)],
+    spaces: &[(String, glam::Mat4)],
     count: usize,
     inputs: &Columns,
     outputs: &[&str],
@@ -107,7 +111,16 @@ pub fn run_prepared(
     let out_stride = kernel.output_stride as usize;
     let groups = u32::try_from(count.div_ceil(KERNEL_WORKGROUP as usize).max(1))
         .map_err(|_| GpuError::InvalidInput(format!("{count} points")))?;
-    let bytes = gpu.compute(&kernel.module, "main", &[], &[&input], count * out_stride * 4, groups)?;
+    let mut uniforms = vec![0u8; kernel.uniform_size as usize];
+    for field in &kernel.uniforms {
+        if let UniformSource::Space { name, inverse, .. } = &field.source {
+            let m = spaces.iter().find(|(n, _)| n == name).map_or(glam::Mat4::IDENTITY, |(_, m)| *m);
+            let m = if *inverse { m.inverse() } else { m };
+            let values: Vec<f64> = m.to_cols_array().iter().map(|x| f64::from(*x)).collect();
+            field.write(&mut uniforms, &values);
+        }
+    }
+    let bytes = gpu.compute(&kernel.module, "main", &uniforms, &[&input], count * out_stride * 4, groups)?;
     let out: Vec<u32> = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     Ok(kernel
         .outputs

@@ -10,7 +10,7 @@ use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
 use patina_compiler::syntax::ast::ShaderKind;
 
 use super::RenderError;
-use super::program::{LoadedShader, evaluate_params};
+use super::program::{LoadedShader, evaluate_params, set_spaces};
 use crate::gpu::Gpu;
 use crate::image::Image;
 
@@ -25,17 +25,23 @@ pub struct ImagerProgram {
     pub values: Vec<(String, Vec<f64>)>,
     /// The scene's background (premultiplied), put under the imager's result.
     pub background: [f32; 4],
+    /// The named spaces at the output size (what `transform` and `option("Format")` read).
+    pub spaces: Vec<(String, glam::Mat4)>,
 }
 
 /// Compiles an imager shader and computes its parameter values.
-pub fn imager_program(loaded: LoadedShader, background: [f32; 4]) -> Result<ImagerProgram, RenderError> {
+pub fn imager_program(
+    loaded: LoadedShader,
+    background: [f32; 4],
+    spaces: Vec<(String, glam::Mat4)>,
+) -> Result<ImagerProgram, RenderError> {
     if loaded.shader.kind != ShaderKind::Imager {
         return Err(RenderError::Input(format!("`{}` is not an imager shader", loaded.shader.name)));
     }
     let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
     let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
-    let values = evaluate_params(&cpu, &loaded.params, &[], None, &[])?;
-    Ok(ImagerProgram { loaded, cpu, values, background })
+    let values = evaluate_params(&cpu, &loaded.params, &spaces, None, &[])?;
+    Ok(ImagerProgram { loaded, cpu, values, background, spaces })
 }
 
 /// The per-pixel inputs the imager reads, by name, point-major.
@@ -100,6 +106,7 @@ fn finish(imager: &ImagerProgram, image: &Image, names: &[&str], results: &[Vec<
 pub fn cpu(imager: &ImagerProgram, image: &Image) -> Result<Image, RenderError> {
     let columns = columns(imager, image);
     let mut e = Evaluator::<f32>::new(&imager.cpu);
+    set_spaces(&mut e, &imager.cpu, &imager.spaces);
     for (name, value) in &imager.values {
         let _ = e.set(name, value);
     }
@@ -127,6 +134,7 @@ pub fn gpu(gpu: &Gpu, imager: &ImagerProgram, image: &Image) -> Result<Image, Re
         &imager.loaded.shader,
         &[],
         &imager.loaded.strings,
+        &imager.spaces,
         count,
         &inputs,
         &names,

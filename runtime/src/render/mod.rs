@@ -240,7 +240,9 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
     let imager = match &scene.imager {
         Some(shader) => {
             let loaded = program::load(shader, ShaderKind::Imager, world_to_camera, specialize)?;
-            let program = imager::imager_program(loaded, background)?;
+            let (w, h) = (scene.output.width, scene.output.height);
+            let spaces = program::spaces(world_to_camera, Mat4::IDENTITY, &camera, w, h);
+            let program = imager::imager_program(loaded, background, spaces)?;
             background = [0.0; 4];
             Some(program)
         }

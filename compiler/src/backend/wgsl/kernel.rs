@@ -51,6 +51,11 @@ pub struct Kernel {
     pub outputs: Vec<KernelValue>,
     /// Words per point of output.
     pub output_stride: u32,
+    /// The uniform block at `@group(0) @binding(0)`, when the shader reads uniforms the kernel
+    /// does not take per point (the matrices of named spaces); empty when it has none.
+    pub uniforms: Vec<super::interface::UniformField>,
+    /// The uniform block's size in bytes (0 without one).
+    pub uniform_size: u32,
 }
 
 /// The workgroup size of kernels.
@@ -212,8 +217,9 @@ pub fn compile_kernel(
         [KERNEL_WORKGROUP, 1, 1],
         f,
     ));
-    // Kernels take no uniform block; remove the placeholder so the module binds nothing at 0.
-    let module = without_uniform_block(mb)?;
+    // A kernel reads per-point values from its buffers; the uniform block stays at binding 0
+    // only when the shader reads uniforms (named spaces), and is moved out of the way otherwise.
+    let (module, uniforms, uniform_size) = uniform_block(mb)?;
     let info =
         naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
             .validate(&module)
@@ -224,13 +230,29 @@ pub fn compile_kernel(
                 )
             })?;
     let strip = |v: Vec<(KernelValue, Target)>| v.into_iter().map(|(k, _)| k).collect();
-    Ok(Kernel { module, info, inputs: strip(ins), input_stride, outputs: strip(outs), output_stride })
+    Ok(Kernel {
+        module,
+        info,
+        inputs: strip(ins),
+        input_stride,
+        outputs: strip(outs),
+        output_stride,
+        uniforms,
+        uniform_size,
+    })
 }
 
-/// The module without its (unused) uniform block: the block's type is laid out as usual so the
-/// variable stays valid, but nothing refers to it, so it is dropped by giving it no binding use.
-fn without_uniform_block(mut mb: ModuleBuilder) -> Result<naga::Module, Diagnostic> {
-    mb.finish_uniforms().map_err(|e| super::internal(crate::source::Span::default(), e))?;
+/// The module with its uniform block laid out: kept at binding 0 when it has fields, else (an
+/// unused placeholder) moved to group 1, where nothing refers to it.
+#[allow(clippy::type_complexity)]
+fn uniform_block(
+    mut mb: ModuleBuilder,
+) -> Result<(naga::Module, Vec<super::interface::UniformField>, u32), Diagnostic> {
+    let (fields, size) =
+        mb.finish_uniforms().map_err(|e| super::internal(crate::source::Span::default(), e))?;
+    if !fields.is_empty() {
+        return Ok((mb.module, fields, size));
+    }
     let mut module = mb.module;
     // An unused resource is harmless to naga; wgpu's auto layout leaves it out. Give it group 1
     // so it can never collide with the kernel's buffers at group 0.
@@ -239,7 +261,7 @@ fn without_uniform_block(mut mb: ModuleBuilder) -> Result<naga::Module, Diagnost
             g.binding = Some(ResourceBinding { group: 1, binding: 0 });
         }
     }
-    Ok(module)
+    Ok((module, Vec::new(), 0))
 }
 
 /// What a name refers to, and its type.

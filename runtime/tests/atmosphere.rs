@@ -180,3 +180,28 @@ fn the_corpus_imagers_and_volumes_render_on_both_backends() {
         }
     }
 }
+
+#[test]
+fn bad_atmospheres_and_imagers_are_one_line_errors() {
+    let dir = format!("{}/tests/scenes", env!("CARGO_MANIFEST_DIR"));
+    let head = "[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\n\n[[object]]\nmesh = \"sphere\"\n\
+                shader = \"../../../examples/shaders/plastic.sl\"\n";
+    let parse = |tail: &str| Scene::parse(&format!("{head}{tail}"), format!("{dir}/bad.toml"), &dir);
+    // The schema: a misspelt field, an empty path.
+    let e = parse("atmosphere = { shader = \"fog.sl\", param = {} }\n").unwrap_err().to_string();
+    assert!(e.contains("param") && !e.contains('\n'), "{e}");
+    let e = parse("\n[imager]\nshader = \"\"\n").unwrap_err().to_string();
+    assert!(e.contains("imager") && !e.contains('\n'), "{e}");
+    // A file without a shader of the kind: rendering says which.
+    let s = parse("atmosphere = { shader = \"../../../examples/shaders/plastic.sl\" }\n").unwrap();
+    let e = render::prepare(&s).err().expect("not a volume shader").to_string();
+    assert!(e.contains("no volume shader") && !e.contains('\n'), "{e}");
+    let s = parse("\n[imager]\nshader = \"../../../examples/shaders/fog.sl\"\n").unwrap();
+    let e = render::prepare(&s).err().expect("not an imager").to_string();
+    assert!(e.contains("no imager shader") && !e.contains('\n'), "{e}");
+    // An unknown parameter.
+    let s = parse("\n[imager]\nshader = \"../../../examples/shaders/imagers.sl\"\nparams = { nope = 1 }\n")
+        .unwrap();
+    let e = render::prepare(&s).err().expect("unknown parameter").to_string();
+    assert!(e.contains("no parameter `nope`") && !e.contains('\n'), "{e}");
+}

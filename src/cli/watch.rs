@@ -161,7 +161,13 @@ impl Session {
             .lights
             .iter()
             .map(|l| &l.shader)
-            .chain(scene.objects.iter().flat_map(|o| std::iter::once(&o.surface).chain(&o.displacement)))
+            .chain(
+                scene
+                    .objects
+                    .iter()
+                    .flat_map(|o| std::iter::once(&o.surface).chain(&o.displacement).chain(&o.atmosphere)),
+            )
+            .chain(&scene.imager)
             .map(|s| s.path.clone())
             .collect();
         let started = Instant::now();
@@ -252,8 +258,11 @@ fn failure(e: RenderError) -> String {
 fn includes(prepared: &Prepared) -> Vec<PathBuf> {
     let mut found = Vec::new();
     let shaders = prepared.lights.iter().map(|l| &l.loaded).chain(prepared.objects.iter().flat_map(|o| {
-        std::iter::once(&o.surface.loaded).chain(o.surface.displacement.as_ref().map(|d| &d.loaded))
+        std::iter::once(&o.surface.loaded)
+            .chain(o.surface.displacement.as_ref().map(|d| &d.loaded))
+            .chain(o.surface.atmosphere.as_ref().map(|a| &a.loaded))
     }));
+    let shaders = shaders.chain(prepared.imager.as_ref().map(|i| &i.loaded));
     for shader in shaders {
         for (_, file) in shader.sources.files() {
             let path = PathBuf::from(&file.name);

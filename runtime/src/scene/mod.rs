@@ -20,8 +20,8 @@
 //! [[light]]                    # any number of lights
 //! shader = "../shaders/lights.sl"        # relative to this file's directory, or a standard-
 //!                                        # library module in brackets: "<shaders.sl>"
-//! name = "pointlight"                    # which shader of the file (optional if it has one light)
-//! params = { intensity = 20.0, from = [2, 3, -4], lightcolor = [1.0, 0.9, 0.8] }
+//! name = "spotlight"                     # which shader of the file (optional if it has one light)
+//! params = { intensity = 20.0, from = [2, 3, -4], to = [0, 0, 0], lightcolor = [1.0, 0.9, 0.8] }
 //!
 //! [[object]]                   # any number of objects
 //! mesh = "sphere"              # sphere | torus | plane | cube | teapot, or { obj = "model.obj" }

@@ -212,7 +212,7 @@ fn unknown_fields_list_the_allowed_ones() {
         error(&format!("{CAMERA}{OBJECT}{OBJECT}colour = [1, 1, 1]\n")),
         "scenes/bad.toml:10:1: object[1].colour: unknown field `colour`; allowed fields: mesh, detail, \
          shader, \
-         name, params, animate, displacement, color, opacity, transform"
+         name, params, animate, displacement, atmosphere, color, opacity, transform"
     );
     assert_eq!(
         error(&format!("{CAMERA}{OBJECT}transform = [{{ rotate = {{ angle = 1, axes = [1, 2, 3] }} }}]\n")),

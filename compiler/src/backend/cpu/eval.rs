@@ -120,13 +120,14 @@ pub struct SlotInfo {
 
 impl CpuProgram {
     /// Compiles a checked shader for a binding: the environment lookups' footprints
-    /// (`opt::textures::footprints`), derivatives (`opt::derivs`), texture lookups, then the
-    /// lowering.
+    /// (`opt::textures::footprints`), derivatives (`opt::derivs`), texture and shadow-map
+    /// lookups, then the lowering.
     pub fn compile(shader: &Shader, binding: &Binding) -> Result<CpuProgram, Diagnostic> {
         let mut shader = shader.clone();
         crate::opt::textures::footprints(&mut shader);
         crate::opt::derivs::differentiate(&mut shader);
         crate::opt::textures::expand(&mut shader);
+        crate::opt::shadow::expand(&mut shader);
         let lowered = lower::lower(&shader, binding)?;
         Ok(CpuProgram { lowered })
     }

@@ -43,8 +43,16 @@ fn report(scene: &Scene, bound: &Prepared, dynamic: &Prepared) -> String {
             let _ = writeln!(out, "  displacement `{}`:", d.loaded.shader.name);
             decisions_text(&mut out, &d.loaded.decisions, &d.loaded.sources);
         }
+        if let Some(a) = &b.surface.atmosphere {
+            let _ = writeln!(out, "  atmosphere `{}`:", a.loaded.shader.name);
+            decisions_text(&mut out, &a.loaded.decisions, &a.loaded.sources);
+        }
         sizes(&mut out, &b.surface, &d.surface);
         interface(&mut out, &b.surface, &d.surface);
+    }
+    if let Some(imager) = &bound.imager {
+        let _ = writeln!(out, "\nimager `{}`", imager.loaded.shader.name);
+        decisions_text(&mut out, &imager.loaded.decisions, &imager.loaded.sources);
     }
     out
 }

@@ -307,11 +307,27 @@ impl Lowerer<'_> {
             ));
             return None;
         };
+        let float =
+            |this: &mut Self, x: f64| this.push_expr(ExprKind::Literal(Literal::Float(x)), Type::FLOAT, span);
+        if !matches!(option.as_str(), "Format" | "Exposure") {
+            // Checked as a variable, in code of its own: nothing reads or writes it.
+            let mut scratch = Block::default();
+            let t = self.expr(target, None, &mut scratch)?;
+            self.place_of(t)?;
+            self.error(
+                Diagnostic::warning(
+                    Code::RendererQuery,
+                    format!("`option` does not know `{option}`: it returns 0 and leaves the variable as it is"),
+                    name.span,
+                    "unknown option",
+                )
+                .with_note("the options answered are \"Format\" (float[3]: width, height, pixel aspect) and \"Exposure\" (float[2]: gain, gamma)"),
+            );
+            return Some(float(self, 0.0));
+        }
         let t = self.expr(target, None, out)?;
         let place = self.place_of(t)?;
         let ty = self.ty(t);
-        let float =
-            |this: &mut Self, x: f64| this.push_expr(ExprKind::Literal(Literal::Float(x)), Type::FLOAT, span);
         let (values, want): (Vec<ExprId>, &str) = match option.as_str() {
             "Format" => {
                 let s = |this: &mut Self, text: &str| {
@@ -334,19 +350,8 @@ impl Lowerer<'_> {
                 values.push(float(self, 1.0));
                 (values, "float[3]")
             }
-            "Exposure" => (vec![float(self, 1.0), float(self, 1.0)], "float[2]"),
-            other => {
-                self.error(
-                    Diagnostic::warning(
-                        Code::RendererQuery,
-                        format!("`option` does not know `{other}`: it returns 0 and leaves the variable as it is"),
-                        name.span,
-                        "unknown option",
-                    )
-                    .with_note("the options answered are \"Format\" (float[3]: width, height, pixel aspect) and \"Exposure\" (float[2]: gain, gamma)"),
-                );
-                return Some(float(self, 0.0));
-            }
+            // "Exposure": gain and gamma.
+            _ => (vec![float(self, 1.0), float(self, 1.0)], "float[2]"),
         };
         if ty.base != Base::Float || ty.array != Some(values.len() as u32) {
             self.error(Diagnostic::error(

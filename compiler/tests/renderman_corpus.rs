@@ -181,3 +181,17 @@ fn printf_formats_as_rsl() {
     ];
     assert_eq!(printf_format("%f %d [%.1p] %s 100%%", &values), "0.500000 -3 [1.0 2.0 3.0] ok 100%");
 }
+
+#[test]
+fn the_wgsl_backend_compiles_printf_uniform_random_option_and_bake() {
+    use patina_compiler::backend::wgsl;
+    let src = "surface s(string bakename = \"b.bake\") {\n    uniform string pass = \"\";\n    option(\"user:pass\", pass);\n    float r[3];\n    float g[2];\n    option(\"Format\", r);\n    option(\"Exposure\", g);\n    uniform color c = color(random(), random(), random());\n    printf(\"%f %c\\n\", s, c);\n    bake(bakename, s, t, c);\n    Ci = c * r[0] / r[1] * g[0] + random();\n}\n";
+    let checked = check_source("shader.sl", src, &MemoryLoader::default());
+    let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
+    assert!(!checked.has_errors(), "{}", render_text(&checked.sources, &list));
+    let mut shader = checked.program.shaders[0].clone();
+    patina_compiler::opt::prepare(&mut shader);
+    let stages = patina_compiler::split::split(&shader).expect("splits");
+    let compiled = wgsl::compile(&stages, &[], &[]);
+    assert!(compiled.is_ok(), "{:?}", compiled.err());
+}

@@ -78,3 +78,20 @@ fn an_unbound_texture_reads_black() {
     assert_eq!(out, vec![0.0, 0.0, 0.0]);
     assert!(e.set_texture("other", quad()).is_err());
 }
+
+#[test]
+fn a_channel_selected_name_reads_from_that_channel_on() {
+    // `texture(name[k], ...)` (RenderMan's channel selection; cd.sl's `titlemap[3]`) once
+    // panicked in the interpreter's lowering. Texels with distinct channels show which are read.
+    let src = "surface t(string map = \"ch\") {
+        float a = texture(map[3], s, t);
+        color gba = texture(map[1], s, t);
+        Ci = color(a, comp(gba, 0), comp(gba, 2));
+    }";
+    let p = program(src, &Binding::default());
+    assert_eq!(p.textures(), ["ch"]);
+    let mut e = Evaluator::<f32>::new(&p);
+    e.set_texture("ch", Texture { size: [1, 1, 1], texels: Arc::from(vec![[0.1, 0.2, 0.3, 0.4]]) }).unwrap();
+    let out = e.eval_points(1, &[("s", &[0.5]), ("t", &[0.5])], &["Ci"]).unwrap().remove(0);
+    assert_eq!(out, [0.4f32, 0.2, 0.4].map(f64::from));
+}

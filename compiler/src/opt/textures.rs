@@ -79,7 +79,7 @@ pub fn expand(shader: &mut Shader) {
         let rate = shader.expr(id).rate;
         let first_new = shader.exprs.len();
         let mut b = Builder::new(shader, span);
-        let texture = args[0];
+        let (texture, channel) = channel_selection(b.shader, args[0]);
         let rgba = if name == "environment" {
             let Some(direction) = environment_direction(&mut b, &args) else { continue };
             let footprint = Footprint {
@@ -93,9 +93,9 @@ pub fn expand(shader: &mut Shader) {
             if three_d { filter3(&mut b, texture, &coords) } else { filter2(&mut b, texture, &coords) }
         };
         let value = match ret.base {
-            Base::Float => b.index(rgba, 0),
+            Base::Float => b.index(rgba, channel.min(3)),
             Base::Color => {
-                let parts = (0..3).map(|c| b.index(rgba, c)).collect();
+                let parts = (0..3).map(|c| b.index(rgba, (channel + c).min(3))).collect();
                 b.construct(parts, Type::of(Base::Color))
             }
             _ => rgba,
@@ -109,6 +109,27 @@ pub fn expand(shader: &mut Shader) {
             e.rate = e.rate.join(rate);
         }
     }
+}
+
+/// RenderMan's channel selection, `texture("name"[k], ...)`: the texture's name and the first
+/// channel the lookup reads (a float lookup reads channel k, a colour one k to k + 2, clamped
+/// to the four channels a texel has). `k` is a constant in every shader seen; any other index
+/// reads from channel 0.
+fn channel_selection(shader: &Shader, name: ExprId) -> (ExprId, u32) {
+    let ExprKind::Index(texture, k) = &shader.expr(name).kind else { return (name, 0) };
+    let constant = |e: ExprId| match &shader.expr(e).kind {
+        ExprKind::Literal(Literal::Int(i)) => u32::try_from(*i).ok(),
+        ExprKind::Literal(Literal::Uint(i)) => Some(*i),
+        _ => None,
+    };
+    let channel = match &shader.expr(*k).kind {
+        ExprKind::Convert(inner) => match &shader.expr(*inner).kind {
+            ExprKind::Literal(Literal::Float(x)) if x.is_finite() && *x >= 0.0 => Some(x.trunc() as u32),
+            _ => constant(*inner),
+        },
+        _ => constant(*k),
+    };
+    (*texture, channel.unwrap_or(0))
 }
 
 /// The name of the option pair [`footprints`] appends to each `environment` lookup: its value is

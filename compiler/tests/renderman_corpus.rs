@@ -195,3 +195,36 @@ fn the_wgsl_backend_compiles_printf_uniform_random_option_and_bake() {
     let compiled = wgsl::compile(&stages, &[], &[]);
     assert!(compiled.is_ok(), "{:?}", compiled.err());
 }
+
+/// The shader of `src`, bound with nothing fixed.
+fn bound(src: &str) -> patina_compiler::ir::Shader {
+    let checked = check_source("shader.sl", src, &MemoryLoader::default());
+    let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
+    assert!(!checked.has_errors(), "{}", render_text(&checked.sources, &list));
+    let shader = &checked.program.shaders[0];
+    patina_compiler::bind::specialize(shader, &[], patina_compiler::bind::Consumed::All).shader
+}
+
+#[test]
+fn string_variables_stored_in_straight_line_code_are_known_where_read() {
+    use patina_compiler::backend::wgsl;
+    // expensive.sl's pattern: a file name made by `concat`, read under a branch.
+    let src = "surface s(string base = \"a\"; string ext = \".tex\") {\n    uniform string f = \"\";\n    f = concat(base, ext);\n    color c = 0;\n    if (s > 0.5) {\n        c = color texture(f, s, t);\n    } else {\n        c = 1;\n    }\n    Ci = c;\n}\n";
+    let mut shader = bound(src);
+    patina_compiler::opt::prepare(&mut shader);
+    let stages = patina_compiler::split::split(&shader).expect("splits");
+    let compiled = wgsl::compile(&stages, &[], &[]);
+    assert!(compiled.is_ok(), "{:?}", compiled.err());
+    // A read in a loop that stores the variable later is left alone.
+    let src = "surface s() {\n    uniform string g = \"x\";\n    uniform float i;\n    for (i = 0; i < 2; i += 1) {\n        Ci += match(\"x\", g);\n        g = \"y\";\n    }\n}\n";
+    let shader = bound(src);
+    let subject = shader
+        .exprs
+        .iter()
+        .find_map(|e| match &e.kind {
+            patina_compiler::ir::ExprKind::Builtin(b, args) if b.name == "match" => Some(args[1]),
+            _ => None,
+        })
+        .expect("a match call");
+    assert!(matches!(shader.expr(subject).kind, patina_compiler::ir::ExprKind::Local(_)));
+}

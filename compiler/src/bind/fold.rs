@@ -67,7 +67,7 @@ pub(super) fn substitute(shader: &mut Shader, fixed: &[Fixed]) -> (Vec<Decision>
 }
 
 /// The expressions that are `output` arguments of built-ins: places written, not reads.
-fn output_args(shader: &Shader) -> rustc_hash::FxHashSet<ExprId> {
+pub(super) fn output_args(shader: &Shader) -> rustc_hash::FxHashSet<ExprId> {
     let mut places = rustc_hash::FxHashSet::default();
     for e in &shader.exprs {
         if let ExprKind::Builtin(b, args) = &e.kind {

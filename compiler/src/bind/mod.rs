@@ -11,6 +11,7 @@
 
 mod fold;
 mod prune;
+mod strings;
 
 use crate::ir::{LocalKind, Shader};
 use crate::source::Span;
@@ -97,6 +98,7 @@ pub struct Bound {
 /// a caller that reads back the `consumed` output parameters.
 pub fn specialize(shader: &Shader, fixed: &[Fixed], consumed: Consumed) -> Bound {
     let mut shader = shader.clone();
+    strings::propagate(&mut shader);
     let (mut decisions, reads) = fold::substitute(&mut shader, fixed);
     if !reads.is_empty() {
         decisions.extend(prune::decide(&mut shader, &reads));

@@ -6,10 +6,12 @@
 //!
 //! The scenes: a surface on a unit sphere under a point and an ambient light; a light on a
 //! plastic sphere above a plastic floor (with a dim ambient light beside it, and a shadow map
-//! made from the light when it has a `shadowname` parameter); a displacement on a plastic sphere
-//! under the point and ambient lights. Points and directions a light declares (`from`, `to`) are set
-//! above and to the left of the camera, aimed at the sphere, so that lights whose defaults sit at
-//! the origin (inside the sphere) still light what is seen.
+//! made from the light when it has a `shadowname` parameter: orthographic for a distant light); a displacement on a plastic sphere
+//! under the point and ambient lights; a volume shader as the scene's atmosphere and an imager
+//! as its imager, over a plastic sphere under the point and ambient lights. Points and
+//! directions a light declares (`from`, `to`) are set above and to the left of the camera, aimed
+//! at the sphere, so that lights whose defaults sit at the origin (inside the sphere) still light
+//! what is seen.
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -223,7 +225,7 @@ fn first_line(text: &str) -> String {
 }
 
 /// The scene a shader of `kind` is rendered in (see the module documentation); `Err` with the
-/// reason when the renderer draws no shaders of that kind.
+/// scene error's first line.
 pub fn scene_for(
     path: &Path,
     kind: ShaderKind,
@@ -278,7 +280,11 @@ pub fn scene_for(
             text +=
                 &format!("[[light]]\nshader = {file}\nname = {name}\nparams = {{ {} }}\n\n", set.join(", "));
             if shadowed {
-                text += "[[shadow]]\nname = \"corpus.shad\"\nlight = 0\nresolution = 256\n\n";
+                let projection = if name.contains("distant") { "orthographic" } else { "perspective" };
+                text += &format!(
+                    "[[shadow]]\nname = \"corpus.shad\"\nlight = 0\nresolution = 256\nbias = 0.05\n\
+                     projection = \"{projection}\"\n\n"
+                );
             }
             if name != "\"ambientlight\"" {
                 text += ambient;
@@ -294,8 +300,15 @@ pub fn scene_for(
             text += &plastic;
             text += &format!("displacement = {{ shader = {file}, name = {name} }}\n");
         }
-        ShaderKind::Volume => return Err("the renderer draws no volume shaders".into()),
-        ShaderKind::Imager => return Err("the renderer draws no imager shaders".into()),
+        ShaderKind::Volume | ShaderKind::Imager => {
+            let table = if kind == ShaderKind::Volume { "atmosphere" } else { "imager" };
+            // Fog's default 1-unit falloff would hide a sphere 3 units away entirely.
+            let set = if params.contains(&"distance") { "distance = 8.0" } else { "" };
+            text += &format!("[{table}]\nshader = {file}\nname = {name}\nparams = {{ {set} }}\n\n");
+            text += point_light;
+            text += ambient;
+            text += &plastic;
+        }
     }
     Scene::parse(&text, "corpus_scene.toml", ".").map_err(|e| first_line(&e.to_string()))
 }

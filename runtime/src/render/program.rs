@@ -153,7 +153,8 @@ pub fn load(
         Err(reason) => return Err(RenderError::Input(format!("cannot read {shown}: {reason}"))),
     };
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let checked = patina_compiler::check_source(&shown, &text, &FsLoader { include_dirs: vec![dir] });
+    let include_dirs = std::iter::once(dir).chain(shader.include_dirs.iter().cloned()).collect();
+    let checked = patina_compiler::check_source(&shown, &text, &FsLoader { include_dirs });
     if checked.has_errors() {
         let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
         let text = patina_compiler::diag::render_text(&checked.sources, &list);

@@ -34,7 +34,33 @@ pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> R
     let shadow_maps = super::shadow::shadow_maps(&raw.shadow, &lights, loc)?;
     let knobs = super::knob::knobs(&raw.knob, &objects, &lights, shadow_maps.len(), loc, base)?;
     let compare = raw.compare.as_ref().map(|c| compare(c, loc)).transpose()?;
-    Ok(Scene { file: file.to_path_buf(), output, camera, lights, objects, knobs, imager, shadow_maps, compare })
+    let mut scene = Scene {
+        file: file.to_path_buf(),
+        output,
+        camera,
+        lights,
+        objects,
+        knobs,
+        imager,
+        shadow_maps,
+        compare,
+    };
+    let include_dirs = include_dirs(&raw.include, loc, base)?;
+    for shader in scene.shaders_mut() {
+        shader.include_dirs.clone_from(&include_dirs);
+    }
+    Ok(scene)
+}
+
+/// The scene's `include` directories, resolved against its directory.
+fn include_dirs(raw: &[String], loc: &Locator, base: &Path) -> Result<Vec<PathBuf>, SceneError> {
+    raw.iter()
+        .enumerate()
+        .map(|(i, dir)| match dir.trim().is_empty() {
+            true => Err(loc.invalid(&field(&["include"]).index(i), "the include directory is empty")),
+            false => Ok(base.join(dir)),
+        })
+        .collect()
 }
 
 fn line(loc: &Locator, at: &Field) -> usize {
@@ -151,13 +177,20 @@ fn shader_parts(
             ));
         }
         let path = PathBuf::from(format!("{}/{module}", patina_compiler::stdlib::PREFIX));
-        return Ok(ShaderRef { path, name: name.clone(), params: params.clone(), animate: animate.to_vec() });
+        return Ok(ShaderRef {
+            path,
+            name: name.clone(),
+            params: params.clone(),
+            animate: animate.to_vec(),
+            include_dirs: Vec::new(),
+        });
     }
     Ok(ShaderRef {
         path: base.join(path),
         name: name.clone(),
         params: params.clone(),
         animate: animate.to_vec(),
+        include_dirs: Vec::new(),
     })
 }
 

@@ -3,6 +3,9 @@
 //! A complete scene, with every field (those marked "default" may be left out):
 //!
 //! ```toml
+//! include = ["../include"]     # directories searched by every shader's #include after its own
+//!                              # (relative to this file's directory; default none)
+//!
 //! [output]                     # the whole table is optional
 //! width = 256                  # pixels, 1..=16384 (default 256)
 //! height = 256                 # (default 256)
@@ -146,10 +149,10 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// The quality knobs that `patina bench` sweeps, in file order.
     pub knobs: Vec<Knob>,
-    /// The shadow maps the renderer makes by depth passes from lights (`[[shadow]]`).
-    pub shadow_maps: Vec<ShadowMap>,
     /// The imager shader run over the finished image, pixel by pixel (`[imager]`), if any.
     pub imager: Option<ShaderRef>,
+    /// The shadow maps the renderer makes by depth passes from lights (`[[shadow]]`).
+    pub shadow_maps: Vec<ShadowMap>,
     /// How closely the GPU must match the CPU reference, when the scene says (OSL's thresholds
     /// otherwise: [`Scene::thresholds`]).
     pub compare: Option<Compare>,
@@ -189,6 +192,9 @@ pub struct ShaderRef {
     /// The parameters the scene animates: they stay in the uniform block, where the others the
     /// scene sets are folded into the shader (DESIGN.md §4).
     pub animate: Vec<String>,
+    /// Further directories searched by `#include` after the shader's own (the scene's `include`
+    /// list, resolved against the scene's directory).
+    pub include_dirs: Vec<PathBuf>,
 }
 
 /// A light source.
@@ -271,6 +277,16 @@ impl Object {
 }
 
 impl Scene {
+    /// Every shader the scene refers to: the lights', then each object's surface, displacement
+    /// and atmosphere, then the imager.
+    pub fn shaders_mut(&mut self) -> impl Iterator<Item = &mut ShaderRef> {
+        let lights = self.lights.iter_mut().map(|l| &mut l.shader);
+        let objects = self.objects.iter_mut().flat_map(|o| {
+            std::iter::once(&mut o.surface).chain(o.displacement.as_mut()).chain(o.atmosphere.as_mut())
+        });
+        lights.chain(objects).chain(self.imager.as_mut())
+    }
+
     /// Reads and checks a scene file; relative paths in it are resolved against its directory.
     pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();

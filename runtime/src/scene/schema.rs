@@ -24,6 +24,8 @@ pub(crate) struct RawScene {
     pub compare: Option<RawCompare>,
     pub atmosphere: Option<RawShader>,
     pub imager: Option<RawShader>,
+    #[serde(default)]
+    pub include: Vec<String>,
 }
 
 #[derive(Deserialize)]

@@ -26,6 +26,8 @@ const SCALE: u32 = 2;
 const LABEL: u32 = 18;
 
 pub fn run(args: CorpusArgs) -> Result<ExitCode, String> {
+    // A missing directory is reported before a GPU is opened for nothing.
+    corpus::files(&args.dir).map_err(|e| format!("{}: {e}", args.dir.display()))?;
     let gpu = if args.cpu_only { None } else { open_gpu() };
     let options = Options { include_dirs: args.include.clone(), size: (args.width, args.height) };
     let entries = corpus::run(&args.dir, &options, gpu.as_ref(), |e| {

@@ -76,10 +76,10 @@ pub struct CorpusArgs {
     #[arg(long)]
     cpu_only: bool,
     /// The test picture's width in pixels.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
     width: u32,
     /// The test picture's height in pixels.
-    #[arg(long, default_value_t = 48)]
+    #[arg(long, default_value_t = 48, value_parser = clap::value_parser!(u32).range(1..=4096))]
     height: u32,
 }
 

@@ -412,3 +412,48 @@ fn compile_binds_a_light_displacement_or_volume_shader_to_a_surface_and_an_image
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("cannot read `/nonexistent.sl`") && stderr.lines().count() == 1, "{stderr}");
 }
+
+#[test]
+fn corpus_checks_renders_and_tabulates_a_directory() {
+    // A directory of two files: a surface that renders, and one that does not check.
+    let dir = std::env::temp_dir().join(format!("patina-cli-corpus-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("surface")).unwrap();
+    std::fs::write(
+        dir.join("surface/flat.sl"),
+        "surface flat(color c = color(0.5, 0.25, 1)) { Ci = c; Oi = 1; }\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("broken.sl"), "surface broken() { Ci = nosuch; }\n").unwrap();
+    let (md, sheet) = (dir.join("corpus.md"), dir.join("corpus.png"));
+    let out = patina(&[
+        "corpus",
+        dir.to_str().unwrap(),
+        "--cpu-only",
+        "--markdown",
+        md.to_str().unwrap(),
+        "--sheet",
+        sheet.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let page = std::fs::read_to_string(&md).unwrap();
+    assert!(page.contains("| `broken.sl` | ? | **E0"), "{page}");
+    assert!(page.contains("| `surface/flat.sl` | surface | ok | – (no GPU) | ok |"), "{page}");
+    assert!(
+        page.contains("**Totals**: 2 files; 1 check; 0 render on the GPU, 1 on the CPU; 0 agree."),
+        "{page}"
+    );
+    // The sheet: two tiles in a row of four, each of two 128 × 96 pictures and a label.
+    let image = patina_runtime::image::Image::read_png(&sheet).unwrap();
+    assert_eq!((image.width, image.height), (4 * (2 * 128 + 8), 96 + 18 + 8));
+    // The flat surface's CPU picture (right half of the second tile) has its colour at the centre.
+    let centre = image.get(264 + 4 + 128 + 64, 4 + 48).unwrap();
+    assert!((centre[0] - 0.5).abs() < 0.01 && (centre[2] - 1.0).abs() < 0.01, "{centre:?}");
+
+    let out = patina(&["corpus", dir.join("missing").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("missing"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -313,17 +313,6 @@ pub fn scene_for(
     Scene::parse(&text, "corpus_scene.toml", ".").map_err(|e| first_line(&e.to_string()))
 }
 
-/// The name of a shader kind as RenderMan writes it.
-pub fn kind_name(kind: ShaderKind) -> &'static str {
-    match kind {
-        ShaderKind::Surface => "surface",
-        ShaderKind::Light => "light",
-        ShaderKind::Displacement => "displacement",
-        ShaderKind::Volume => "volume",
-        ShaderKind::Imager => "imager",
-    }
-}
-
 /// The results as a Markdown table, with the totals below it.
 pub fn markdown(entries: &[Entry]) -> String {
     let mut out = String::from(
@@ -331,7 +320,7 @@ pub fn markdown(entries: &[Entry]) -> String {
     );
     for e in entries {
         let kind = match (&e.shader, e.check.worked()) {
-            (Some((_, k)), _) => kind_name(*k),
+            (Some((_, k)), _) => k.keyword(),
             (None, true) => "functions",
             (None, false) => "?",
         };

@@ -323,7 +323,7 @@ impl Compiler {
             .find(|s| s.kind == kind && shader.is_none_or(|n| s.name == n))
             .ok_or_else(|| CompileError::NoShader {
                 file: name.into(),
-                kind: kind_name(kind),
+                kind: kind.keyword(),
                 name: shader.map(Into::into),
             })?;
         let mut strings = Vec::new();
@@ -380,16 +380,6 @@ fn read(path: &Path) -> Result<String, CompileError> {
         Ok(Some(text)) => Ok(text),
         Ok(None) => Err(CompileError::Io { path: path.to_path_buf(), message: "no such file".into() }),
         Err(message) => Err(CompileError::Io { path: path.to_path_buf(), message }),
-    }
-}
-
-fn kind_name(kind: ShaderKind) -> &'static str {
-    match kind {
-        ShaderKind::Surface => "surface",
-        ShaderKind::Light => "light",
-        ShaderKind::Displacement => "displacement",
-        ShaderKind::Volume => "volume",
-        ShaderKind::Imager => "imager",
     }
 }
 

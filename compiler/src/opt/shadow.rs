@@ -33,9 +33,10 @@
 //!
 //! Runs after `opt::derivs` and before the split, rewriting each lookup in place at its rate.
 
+use super::textures::{constant, option};
 use crate::ir::build::Builder;
-use crate::ir::types::{Base, Type};
-use crate::ir::{BinaryOp, ExprId, ExprKind, Literal, Shader};
+use crate::ir::types::Type;
+use crate::ir::{BinaryOp, ExprId, ExprKind, Shader};
 
 /// Taps when a lookup names no `"samples"` (or names a value that is not a constant).
 pub const DEFAULT_SAMPLES: u32 = 16;
@@ -90,38 +91,14 @@ pub fn expand(shader: &mut Shader) {
 
 /// The `"name", value` pairs after the positional arguments.
 fn options(shader: &Shader, pairs: &[ExprId]) -> Options {
-    let mut options = Options { samples: DEFAULT_SAMPLES, blur: None, bias: None, width: None };
-    for pair in pairs.chunks(2) {
-        let [name, value] = pair else { break };
-        let ExprKind::Literal(Literal::String(name)) = &shader.expr(*name).kind else { continue };
-        let numeric = matches!(shader.expr(*value).ty.base, Base::Float | Base::Int | Base::Uint)
-            && !shader.expr(*value).ty.is_array();
-        if !numeric {
-            continue;
-        }
-        match name.as_str() {
-            "samples" => {
-                if let Some(n) = constant(shader, *value) {
-                    options.samples = n.round().clamp(1.0, f64::from(MAX_SAMPLES)) as u32;
-                }
-            }
-            "blur" => options.blur = Some(*value),
-            "bias" => options.bias = Some(*value),
-            "width" => options.width = Some(*value),
-            _ => {}
-        }
-    }
-    options
-}
-
-/// The value of a constant numeric expression (a literal, possibly converted).
-fn constant(shader: &Shader, e: ExprId) -> Option<f64> {
-    match &shader.expr(e).kind {
-        ExprKind::Literal(Literal::Float(x)) if x.is_finite() => Some(*x),
-        ExprKind::Literal(Literal::Int(i)) => Some(f64::from(*i)),
-        ExprKind::Literal(Literal::Uint(u)) => Some(f64::from(*u)),
-        ExprKind::Convert(inner) => constant(shader, *inner),
-        _ => None,
+    let samples = option(shader, pairs, "samples")
+        .and_then(|n| constant(shader, n))
+        .map_or(DEFAULT_SAMPLES, |n| n.round().clamp(1.0, f64::from(MAX_SAMPLES)) as u32);
+    Options {
+        samples,
+        blur: option(shader, pairs, "blur"),
+        bias: option(shader, pairs, "bias"),
+        width: option(shader, pairs, "width"),
     }
 }
 

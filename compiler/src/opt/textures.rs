@@ -83,9 +83,9 @@ pub fn expand(shader: &mut Shader) {
         let rgba = if name == "environment" {
             let Some(direction) = environment_direction(&mut b, &args) else { continue };
             let footprint = Footprint {
-                width: option(&b, &options, FOOTPRINT),
-                scale: option(&b, &options, "width"),
-                blur: option(&b, &options, "blur"),
+                width: option(b.shader, &options, FOOTPRINT),
+                scale: option(b.shader, &options, "width"),
+                blur: option(b.shader, &options, "blur"),
             };
             environment(&mut b, texture, direction, footprint)
         } else {
@@ -117,18 +117,7 @@ pub fn expand(shader: &mut Shader) {
 /// reads from channel 0.
 fn channel_selection(shader: &Shader, name: ExprId) -> (ExprId, u32) {
     let ExprKind::Index(texture, k) = &shader.expr(name).kind else { return (name, 0) };
-    let constant = |e: ExprId| match &shader.expr(e).kind {
-        ExprKind::Literal(Literal::Int(i)) => u32::try_from(*i).ok(),
-        ExprKind::Literal(Literal::Uint(i)) => Some(*i),
-        _ => None,
-    };
-    let channel = match &shader.expr(*k).kind {
-        ExprKind::Convert(inner) => match &shader.expr(*inner).kind {
-            ExprKind::Literal(Literal::Float(x)) if x.is_finite() && *x >= 0.0 => Some(x.trunc() as u32),
-            _ => constant(*inner),
-        },
-        _ => constant(*k),
-    };
+    let channel = constant(shader, *k).filter(|k| *k >= 0.0).map(|k| k.trunc() as u32);
     (*texture, channel.unwrap_or(0))
 }
 
@@ -174,17 +163,26 @@ pub fn footprints(shader: &mut Shader) {
     }
 }
 
-/// The value of the numeric option `name` among a lookup's trailing `"name", value` pairs, as a
-/// float; `None` when it is absent (or not a number).
-fn option(b: &Builder, options: &[ExprId], name: &str) -> Option<ExprId> {
-    options.chunks(2).find_map(|pair| match (&b.shader.expr(pair[0]).kind, pair.get(1)) {
-        (ExprKind::Literal(Literal::String(n)), Some(&value))
-            if n.as_str() == name && matches!(b.ty(value), t if t == Type::FLOAT || t == Type::INT) =>
-        {
-            Some(value)
-        }
-        _ => None,
+/// The value of option `name` among a lookup's trailing `"name", value` pairs (a numeric
+/// scalar; the last pair naming it wins, as in RenderMan's parameter lists).
+pub(crate) fn option(shader: &Shader, pairs: &[ExprId], name: &str) -> Option<ExprId> {
+    pairs.chunks_exact(2).rev().find_map(|pair| {
+        let ExprKind::Literal(Literal::String(n)) = &shader.expr(pair[0]).kind else { return None };
+        let ty = shader.expr(pair[1]).ty;
+        let numeric = matches!(ty.base, Base::Float | Base::Int | Base::Uint) && !ty.is_array();
+        (n.as_str() == name && numeric).then_some(pair[1])
     })
+}
+
+/// The value of a constant numeric expression (a literal, possibly converted).
+pub(crate) fn constant(shader: &Shader, e: ExprId) -> Option<f64> {
+    match &shader.expr(e).kind {
+        ExprKind::Literal(Literal::Float(x)) if x.is_finite() => Some(*x),
+        ExprKind::Literal(Literal::Int(i)) => Some(f64::from(*i)),
+        ExprKind::Literal(Literal::Uint(u)) => Some(f64::from(*u)),
+        ExprKind::Convert(inner) => constant(shader, *inner),
+        _ => None,
+    }
 }
 
 /// What widens an environment lookup's filter: its footprint (from [`footprints`]) and the

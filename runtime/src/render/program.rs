@@ -166,8 +166,8 @@ pub fn load(
     });
     let Some(found) = found else {
         let what = match &shader.name {
-            Some(n) => format!("no {} shader `{n}`", kind_name(kind)),
-            None => format!("no {} shader", kind_name(kind)),
+            Some(n) => format!("no {} shader `{n}`", kind.keyword()),
+            None => format!("no {} shader", kind.keyword()),
         };
         return Err(RenderError::Input(format!("{shown}: {what}")));
     };
@@ -205,16 +205,6 @@ pub fn load(
         decisions,
         sources: Arc::new(checked.sources.clone()),
     })
-}
-
-fn kind_name(kind: ShaderKind) -> &'static str {
-    match kind {
-        ShaderKind::Surface => "surface",
-        ShaderKind::Light => "light",
-        ShaderKind::Displacement => "displacement",
-        ShaderKind::Volume => "volume",
-        ShaderKind::Imager => "imager",
-    }
 }
 
 /// Whether a parameter's scene value is transformed into camera space ([`to_current`]), so that

@@ -71,10 +71,6 @@ pub fn load(name: &str, base: &Path) -> Result<Texture, RenderError> {
                 }),
             }
         };
-    // No name: no map (RenderMan's default texture names are ""), one black transparent texel.
-    if name.is_empty() {
-        return Ok(Texture::default());
-    }
     let (kind, spec) = match name.split_once(':') {
         Some((k, n)) => (k, Some(n)),
         None => (name, None),

@@ -202,7 +202,7 @@ fn bound(src: &str) -> patina_compiler::ir::Shader {
     let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
     assert!(!checked.has_errors(), "{}", render_text(&checked.sources, &list));
     let shader = &checked.program.shaders[0];
-    patina_compiler::bind::specialize(shader, &[], patina_compiler::bind::Consumed::All).shader
+    patina_compiler::bind::specialize(shader, &[], &[], patina_compiler::bind::Consumed::All).shader
 }
 
 #[test]

@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use patina_compiler::backend::cpu::LightBinding;
+use patina_compiler::backend::cpu::{LightBinding, Texture};
 use patina_compiler::backend::wgsl::interface::UniformSource;
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, KernelValue, compile_kernel};
 use patina_compiler::diag::Diagnostic;
@@ -71,25 +71,44 @@ pub fn run_kernel(
 ) -> Result<Vec<Vec<f64>>, KernelError> {
     let mut diff = shader.clone();
     patina_compiler::opt::derivs::differentiate(&mut diff);
-    run_prepared(gpu, &diff, lights, &[], &[], count, inputs, outputs)
+    run_prepared(gpu, &diff, &Resources { lights, ..Resources::default() }, count, inputs, outputs)
+}
+
+/// What a kernel reads besides its per-point columns.
+#[derive(Clone, Copy, Default)]
+pub struct Resources<'a> {
+    /// The lights bound (their values are inputs `L[k]`, `Cl[k]`).
+    pub lights: &'a [LightBinding],
+    /// The values of the shader's string parameters, by name.
+    pub strings: &'a [(String, String)],
+    /// The matrices of the named spaces it reads, from "current" space to each (a space not
+    /// listed is the identity).
+    pub spaces: &'a [(String, glam::Mat4)],
+    /// The textures it looks up, by the name the interpreter's `set_texture` takes.
+    pub textures: &'a [(String, Texture)],
 }
 
 /// As [`run_kernel`], for a shader already differentiated (`opt::prepare` or `differentiate`),
-/// with the values of its string parameters and the matrices of the named spaces it reads (from
-/// "current" space to each; a space not listed is the identity).
-#[allow(clippy::too_many_arguments)]
+/// with the string values, spaces and textures of `resources`.
 pub fn run_prepared(
     gpu: &Gpu,
     shader: &Shader,
-    lights: &[LightBinding],
-    strings: &[(String, String)],
-    spaces: &[(String, glam::Mat4)],
+    resources: &Resources,
     count: usize,
     inputs: &Columns,
     outputs: &[&str],
 ) -> Result<Vec<Vec<f64>>, KernelError> {
     let names: Vec<&str> = inputs.iter().map(|(n, _)| *n).collect();
-    let kernel = compile_kernel(shader, lights, strings, &names, outputs).map_err(KernelError::Compile)?;
+    let kernel = compile_kernel(shader, resources.lights, resources.strings, &names, outputs)
+        .map_err(KernelError::Compile)?;
+    let textures = kernel
+        .textures
+        .iter()
+        .map(|slot| match resources.textures.iter().find(|(n, _)| *n == slot.name) {
+            Some((_, t)) => Ok(crate::render::textures::gpu_data(t, slot.dimensions)),
+            None => Err(GpuError::InvalidInput(format!("no texture `{}` given to the kernel", slot.name))),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     let stride = kernel.input_stride as usize;
     let mut words = vec![0u32; count * stride];
     for (value, (name, column)) in kernel.inputs.iter().zip(inputs) {
@@ -114,13 +133,22 @@ pub fn run_prepared(
     let mut uniforms = vec![0u8; kernel.uniform_size as usize];
     for field in &kernel.uniforms {
         if let UniformSource::Space { name, inverse, .. } = &field.source {
-            let m = spaces.iter().find(|(n, _)| n == name).map_or(glam::Mat4::IDENTITY, |(_, m)| *m);
+            let m =
+                resources.spaces.iter().find(|(n, _)| n == name).map_or(glam::Mat4::IDENTITY, |(_, m)| *m);
             let m = if *inverse { m.inverse() } else { m };
             let values: Vec<f64> = m.to_cols_array().iter().map(|x| f64::from(*x)).collect();
             field.write(&mut uniforms, &values);
         }
     }
-    let bytes = gpu.compute(&kernel.module, "main", &uniforms, &[&input], count * out_stride * 4, groups)?;
+    let bytes = gpu.compute_textured(
+        &kernel.module,
+        "main",
+        &uniforms,
+        &[&input],
+        &textures,
+        count * out_stride * 4,
+        groups,
+    )?;
     let out: Vec<u32> = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     Ok(kernel
         .outputs

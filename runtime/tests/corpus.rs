@@ -13,10 +13,7 @@ const EXCLUDED: &[(&str, &str)] = &[];
 
 /// Files that check but do not yet render on both backends or agree, with the reason: the test
 /// asserts that each still fails, so that this list stays true as the gaps close.
-const NOT_YET: &[(&str, &str)] = &[(
-    "imager/bluescreen.sl",
-    "the GPU's imager pass binds no textures: its lookup of an empty name is dead, but still needs a binding",
-)];
+const NOT_YET: &[(&str, &str)] = &[];
 
 /// Files whose test picture is black by design, with why.
 const DARK: &[(&str, &str)] = &[("surface/showuser.sl", "shows a user attribute the scene does not set")];

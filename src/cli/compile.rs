@@ -95,7 +95,8 @@ fn imager(args: &CompileArgs, name: &str) -> Result<ExitCode, String> {
             return Err(format!("shader `{name}` has no parameter `{fixed}`"));
         }
     }
-    let bound = patina_compiler::bind::specialize(found, &numbers, patina_compiler::bind::Consumed::All);
+    let bound =
+        patina_compiler::bind::specialize(found, &numbers, &strings, patina_compiler::bind::Consumed::All);
     let mut shader = bound.shader;
     patina_compiler::opt::prepare(&mut shader);
     let binding = Binding { lights: Vec::new(), strings: strings.clone() };

@@ -361,7 +361,7 @@ impl Compiler {
         let fixed: Vec<Fixed> =
             numbers.iter().map(|(n, v)| Fixed { name: n.clone(), value: v.clone() }).collect();
         // A user's program may read any output parameter: keep them all.
-        let bound = patina_compiler::bind::specialize(found, &fixed, Consumed::All);
+        let bound = patina_compiler::bind::specialize(found, &fixed, &strings, Consumed::All);
         let mut shader = bound.shader;
         patina_compiler::opt::prepare(&mut shader);
         let loaded = LoadedShader { shader, strings, params: numbers, decisions: bound.decisions, sources };

@@ -66,6 +66,52 @@ pub(super) fn substitute(shader: &mut Shader, fixed: &[Fixed]) -> (Vec<Decision>
     (decisions, reads)
 }
 
+/// Decides every comparison of two strings whose values are known: literals, and string
+/// parameters the shader never writes, whose value is the scene's (`strings`) or else a literal
+/// default. Strings are compile-time values on both backends, so such a comparison is one; the
+/// comparisons become literals, recorded in `reads` with the parameters they read, so that the
+/// branches they guard (`if (texturename != "")`) are decided like those of fixed numbers.
+pub(super) fn compare_strings(shader: &mut Shader, strings: &[(String, String)], reads: &mut Reads) {
+    let stores = crate::ir::stores::stores(shader);
+    // A known string and the parameter it was read from, if any.
+    let value = |shader: &Shader, id: ExprId| -> Option<(String, Option<String>)> {
+        match &shader.expr(id).kind {
+            ExprKind::Literal(Literal::String(s)) => Some((s.to_string(), None)),
+            ExprKind::Local(l) => {
+                let local = shader.local(*l);
+                let LocalKind::Param { output: false, default } = local.kind else { return None };
+                if stores[l.0 as usize].count != 0 || local.ty.is_array() {
+                    return None;
+                }
+                let name = local.name.to_string();
+                if let Some((_, s)) = strings.iter().find(|(n, _)| *n == name) {
+                    return Some((s.clone(), Some(name)));
+                }
+                match default.map(|d| &shader.expr(d).kind) {
+                    Some(ExprKind::Literal(Literal::String(s))) => Some((s.to_string(), Some(name))),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    };
+    for i in 0..shader.exprs.len() {
+        let ExprKind::Binary(op @ (BinaryOp::Eq | BinaryOp::Ne), a, b) = shader.exprs[i].kind else {
+            continue;
+        };
+        if shader.expr(a).ty.base != Base::String {
+            continue;
+        }
+        let (Some((x, p)), Some((y, q))) = (value(shader, a), value(shader, b)) else { continue };
+        let names: Vec<String> = p.into_iter().chain(q).collect();
+        let Some(name) = names.first() else { continue };
+        let e = &mut shader.exprs[i];
+        e.kind = ExprKind::Literal(Literal::Bool((x == y) == (op == BinaryOp::Eq)));
+        e.rate = Rate::CONSTANT;
+        reads.insert(ExprId(i as u32), name.clone());
+    }
+}
+
 /// The expressions that are `output` arguments of built-ins: places written, not reads.
 pub(super) fn output_args(shader: &Shader) -> rustc_hash::FxHashSet<ExprId> {
     let mut places = rustc_hash::FxHashSet::default();

@@ -1,5 +1,6 @@
 //! Binding (DESIGN.md §4): a shader specialized for what a scene fixes. Parameters the scene fixes
-//! become constants (`fold.rs`), conditions that become constant decide their branches at compile
+//! become constants (`fold.rs`), and so do comparisons of strings (which are always known at
+//! compile time: the scene's value or the default); conditions that become constant decide their branches at compile
 //! time and the code nobody reads any more is dropped (`prune.rs`). What remains is a smaller
 //! shader with the same meaning for that binding; the split and both backends then leave out the
 //! uniforms, textures, varyings and functions it no longer reads.
@@ -94,12 +95,19 @@ pub struct Bound {
 }
 
 /// Specializes `shader` for the parameter values in `fixed` (names it does not declare, output
-/// parameters, parameters the shader writes and values of the wrong width are left dynamic), for
-/// a caller that reads back the `consumed` output parameters.
-pub fn specialize(shader: &Shader, fixed: &[Fixed], consumed: Consumed) -> Bound {
+/// parameters, parameters the shader writes and values of the wrong width are left dynamic) and
+/// the string parameters' values in `strings` (the others keep their defaults), for a caller that
+/// reads back the `consumed` output parameters.
+pub fn specialize(
+    shader: &Shader,
+    fixed: &[Fixed],
+    strings: &[(String, String)],
+    consumed: Consumed,
+) -> Bound {
     let mut shader = shader.clone();
     strings::propagate(&mut shader);
-    let (mut decisions, reads) = fold::substitute(&mut shader, fixed);
+    let (mut decisions, mut reads) = fold::substitute(&mut shader, fixed);
+    fold::compare_strings(&mut shader, strings, &mut reads);
     if !reads.is_empty() {
         decisions.extend(prune::decide(&mut shader, &reads));
     }

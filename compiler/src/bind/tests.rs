@@ -12,7 +12,7 @@ fn shader(src: &str) -> Shader {
 
 /// Specializes for a caller that reads every output parameter.
 fn specialize_all(shader: &Shader, fixed: &[Fixed]) -> Bound {
-    specialize(shader, fixed, Consumed::All)
+    specialize(shader, fixed, &[], Consumed::All)
 }
 
 fn fixed(pairs: &[(&str, &[f64])]) -> Vec<Fixed> {
@@ -158,12 +158,12 @@ fn outputs_nobody_consumes_take_their_code_with_them() {
             Ci = Cs;
         }",
     );
-    let all = specialize(&original, &[], Consumed::All);
+    let all = specialize(&original, &[], &[], Consumed::All);
     assert!(
         calls(&all.shader).iter().any(|c| c.contains("noise"))
             || calls(&original).iter().all(|c| !c.contains("noise"))
     );
-    let renderer = specialize(&original, &[], Consumed::Only(&["albedo"]));
+    let renderer = specialize(&original, &[], &[], Consumed::Only(&["albedo"]));
     assert!(calls(&renderer.shader).iter().all(|c| !c.contains("noise")), "{:?}", calls(&renderer.shader));
     assert!(renderer.decisions.contains(&Decision::UnconsumedOutput { name: "depth_cue".into() }));
     assert!(
@@ -175,4 +175,45 @@ fn outputs_nobody_consumes_take_their_code_with_them() {
             .iter()
             .any(|d| matches!(d, Decision::UnconsumedOutput { name } if name == "albedo"))
     );
+}
+
+const GUARDED: &str = "imager g(string texturename = \"\"; color background = 1) {
+    if (texturename != \"\") { Ci += (1 - alpha) * color texture(texturename, s, t); }
+    else { Ci += (1 - alpha) * background; }
+}";
+
+/// The branches binding decided, with the parameters that decided them.
+fn branches(bound: &Bound) -> Vec<(bool, Vec<String>)> {
+    let decided = bound.decisions.iter().filter_map(|d| match d {
+        Decision::Branch { taken, because, .. } => Some((*taken, because.clone())),
+        _ => None,
+    });
+    decided.collect()
+}
+
+#[test]
+fn a_string_parameter_decides_its_comparison_from_the_scene_or_its_default() {
+    let original = shader(GUARDED);
+    assert!(calls(&original).contains(&"texture".to_string()));
+    // Unset: the default "" is the value, and the lookup is dead.
+    let unset = specialize(&original, &[], &[], Consumed::All);
+    assert!(!calls(&unset.shader).contains(&"texture".to_string()), "{:?}", calls(&unset.shader));
+    assert_eq!(branches(&unset), [(false, vec!["texturename".to_string()])]);
+    // Set by the scene: the lookup is all that is left.
+    let set = specialize(&original, &[], &[("texturename".into(), "sky.png".into())], Consumed::All);
+    assert!(calls(&set.shader).contains(&"texture".to_string()));
+    assert_eq!(branches(&set), [(true, vec!["texturename".to_string()])]);
+}
+
+#[test]
+fn a_string_the_shader_writes_is_not_decided() {
+    let original = shader(
+        "surface w(string map = \"\"; float k = 0) {
+            if (k > 0.5) { map = \"other.png\"; }
+            if (map != \"\") { Ci = color texture(map, s, t); } else { Ci = Cs; }
+        }",
+    );
+    let bound = specialize(&original, &[], &[], Consumed::All);
+    assert!(calls(&bound.shader).contains(&"texture".to_string()));
+    assert!(branches(&bound).is_empty(), "{:?}", bound.decisions);
 }

@@ -1,6 +1,7 @@
 //! The compute harness: runs one entry point over caller buffers and returns the output buffer, so
 //! compiled shader functions can be checked value by value against the CPU interpreter.
 
+use super::texture::{self, TextureData, Uploaded};
 use super::{Gpu, GpuError};
 use std::borrow::Cow;
 
@@ -21,20 +22,48 @@ impl Gpu {
         output_len: usize,
         workgroups: u32,
     ) -> Result<Vec<u8>, GpuError> {
+        self.compute_textured(module, entry, uniforms, inputs, &[], output_len, workgroups)
+    }
+
+    /// As [`Gpu::compute`], with `textures` bound in `@group(1)`, texture k at `@binding(k)` and
+    /// no samplers (the entry fetches texels with `textureLoad`, as Patina's kernels do).
+    #[allow(clippy::too_many_arguments)]
+    pub fn compute_textured(
+        &self,
+        module: &naga::Module,
+        entry: &str,
+        uniforms: &[u8],
+        inputs: &[&[u8]],
+        textures: &[TextureData],
+        output_len: usize,
+        workgroups: u32,
+    ) -> Result<Vec<u8>, GpuError> {
         super::limits::check_compute(&self.device.limits(), uniforms.len(), inputs, output_len, workgroups)?;
-        let readback =
-            self.scoped(|| self.encode_compute(module, entry, uniforms, inputs, output_len, workgroups))?;
+        let uploaded = textures.iter().map(|t| self.upload_texture(t)).collect::<Result<Vec<_>, _>>()?;
+        let readback = self.scoped(|| {
+            self.encode_compute(
+                module,
+                entry,
+                uniforms,
+                inputs,
+                (textures, &uploaded),
+                output_len,
+                workgroups,
+            )
+        })?;
         let mut bytes = self.read_buffer(&readback)?;
         bytes.truncate(output_len);
         Ok(bytes)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn encode_compute(
         &self,
         module: &naga::Module,
         entry: &str,
         uniforms: &[u8],
         inputs: &[&[u8]],
+        (textures, uploaded): (&[TextureData], &[Uploaded]),
         output_len: usize,
         workgroups: u32,
     ) -> wgpu::Buffer {
@@ -93,9 +122,45 @@ impl Gpu {
             layout: &layout,
             entries: &group_entries,
         });
+        let texture_layout = (!textures.is_empty()).then(|| {
+            let entries: Vec<_> = textures
+                .iter()
+                .enumerate()
+                .map(|(k, t)| wgpu::BindGroupLayoutEntry {
+                    binding: k as u32,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: texture::view_dimension(t.dimension),
+                        multisampled: false,
+                    },
+                    count: None,
+                })
+                .collect();
+            self.device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("patina compute textures"),
+                entries: &entries,
+            })
+        });
+        let texture_group = texture_layout.as_ref().map(|layout| {
+            let entries: Vec<_> = uploaded
+                .iter()
+                .enumerate()
+                .map(|(k, u)| wgpu::BindGroupEntry {
+                    binding: k as u32,
+                    resource: wgpu::BindingResource::TextureView(&u.view),
+                })
+                .collect();
+            self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("patina compute textures"),
+                layout,
+                entries: &entries,
+            })
+        });
+        let layouts = [Some(&layout), texture_layout.as_ref()];
         let pipeline_layout = self.device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: None,
-            bind_group_layouts: &[Some(&layout)],
+            bind_group_layouts: &layouts[..if texture_layout.is_some() { 2 } else { 1 }],
             immediate_size: 0,
         });
         let shader = self.device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -121,6 +186,9 @@ impl Gpu {
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(0, &group, &[]);
+            if let Some(textures) = &texture_group {
+                pass.set_bind_group(1, textures, &[]);
+            }
             pass.dispatch_workgroups(workgroups, 1, 1);
         }
         encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, output.size());

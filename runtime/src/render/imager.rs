@@ -6,7 +6,9 @@
 //! `Oi` (alpha in each channel); its `Ci` and `alpha` are the pixel's, then put over the scene's
 //! background.
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use std::path::Path;
+
+use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, Texture};
 use patina_compiler::syntax::ast::ShaderKind;
 
 use super::RenderError;
@@ -27,13 +29,17 @@ pub struct ImagerProgram {
     pub background: [f32; 4],
     /// The named spaces at the output size (what `transform` and `option("Format")` read).
     pub spaces: Vec<(String, glam::Mat4)>,
+    /// The textures it looks up, by name.
+    pub textures: Vec<(String, Texture)>,
 }
 
-/// Compiles an imager shader and computes its parameter values.
+/// Compiles an imager shader, computes its parameter values and loads the textures it reads
+/// (files relative to `base`, the scene's folder).
 pub fn imager_program(
     loaded: LoadedShader,
     background: [f32; 4],
     spaces: Vec<(String, glam::Mat4)>,
+    base: &Path,
 ) -> Result<ImagerProgram, RenderError> {
     if loaded.shader.kind != ShaderKind::Imager {
         return Err(RenderError::Input(format!("`{}` is not an imager shader", loaded.shader.name)));
@@ -41,7 +47,12 @@ pub fn imager_program(
     let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
     let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
     let values = evaluate_params(&cpu, &loaded.params, &spaces, None, &[])?;
-    Ok(ImagerProgram { loaded, cpu, values, background, spaces })
+    let textures = cpu
+        .textures()
+        .iter()
+        .map(|name| Ok((name.to_string(), super::textures::load(name, base)?)))
+        .collect::<Result<_, RenderError>>()?;
+    Ok(ImagerProgram { loaded, cpu, values, background, spaces, textures })
 }
 
 /// The per-pixel inputs the imager reads, by name, point-major.
@@ -110,6 +121,10 @@ pub fn cpu(imager: &ImagerProgram, image: &Image) -> Result<Image, RenderError> 
     for (name, value) in &imager.values {
         let _ = e.set(name, value);
     }
+    for (name, texture) in &imager.textures {
+        // The names are the program's own (`CpuProgram::textures`), so this cannot fail.
+        let _ = e.set_texture(name, texture.clone());
+    }
     let inputs: Vec<(&str, &[f64])> = columns.iter().map(|(n, c)| (n.as_str(), c.as_slice())).collect();
     let names = outputs(imager);
     let count = image.pixels.len();
@@ -129,16 +144,13 @@ pub fn gpu(gpu: &Gpu, imager: &ImagerProgram, image: &Image) -> Result<Image, Re
     }
     let inputs: Vec<(&str, &[f64])> = columns.iter().map(|(n, c)| (n.as_str(), c.as_slice())).collect();
     let names = outputs(imager);
-    let results = crate::kernel::run_prepared(
-        gpu,
-        &imager.loaded.shader,
-        &[],
-        &imager.loaded.strings,
-        &imager.spaces,
-        count,
-        &inputs,
-        &names,
-    )
-    .map_err(|e| RenderError::Gpu(format!("imager `{}`: {e}", imager.loaded.shader.name)))?;
+    let resources = crate::kernel::Resources {
+        lights: &[],
+        strings: &imager.loaded.strings,
+        spaces: &imager.spaces,
+        textures: &imager.textures,
+    };
+    let results = crate::kernel::run_prepared(gpu, &imager.loaded.shader, &resources, count, &inputs, &names)
+        .map_err(|e| RenderError::Gpu(format!("imager `{}`: {e}", imager.loaded.shader.name)))?;
     Ok(finish(imager, image, &names, &results))
 }

@@ -10,7 +10,7 @@ pub mod imager;
 pub mod program;
 mod progress;
 pub mod shadow;
-mod textures;
+pub(crate) mod textures;
 
 use glam::Mat4;
 use patina_compiler::syntax::ast::ShaderKind;
@@ -166,6 +166,8 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
     // Shadow maps by name, drawn when an object first reads them (render/shadow.rs).
     let mut shadow_maps: std::collections::HashMap<String, patina_compiler::backend::cpu::Texture> =
         std::collections::HashMap::new();
+    // Texture files are named relative to the scene's folder.
+    let base = scene.file.parent().unwrap_or(std::path::Path::new("."));
     for (i, o) in scene.objects.iter().enumerate() {
         let object_to_world = scene.object_transform(i);
         let spaces = program::spaces(world_to_camera, object_to_world, &camera, width, height);
@@ -212,7 +214,6 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
         let mesh = o
             .build_mesh()
             .map_err(|e| RenderError::Input(format!("{}: object {i}: {e}", scene.file.display())))?;
-        let base = scene.file.parent().unwrap_or(std::path::Path::new("."));
         let textures = surface
             .gpu
             .interface
@@ -242,7 +243,7 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
             let loaded = program::load(shader, ShaderKind::Imager, world_to_camera, specialize)?;
             let (w, h) = (scene.output.width, scene.output.height);
             let spaces = program::spaces(world_to_camera, Mat4::IDENTITY, &camera, w, h);
-            let program = imager::imager_program(loaded, background, spaces)?;
+            let program = imager::imager_program(loaded, background, spaces, base)?;
             background = [0.0; 4];
             Some(program)
         }

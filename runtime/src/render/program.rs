@@ -192,7 +192,7 @@ pub fn load(
             .map(|(name, value)| Fixed { name: name.clone(), value: value.clone() })
             .collect();
         // The renderer reads back Ci, Oi or the result, never an output parameter.
-        let bound = patina_compiler::bind::specialize(shader_ir, &fixed, Consumed::Only(&[]));
+        let bound = patina_compiler::bind::specialize(shader_ir, &fixed, &strings, Consumed::Only(&[]));
         (bound.shader, bound.decisions)
     } else {
         (shader_ir.clone(), Vec::new())

@@ -56,6 +56,9 @@ pub struct Kernel {
     pub uniforms: Vec<super::interface::UniformField>,
     /// The uniform block's size in bytes (0 without one).
     pub uniform_size: u32,
+    /// The textures the kernel fetches from, in `@group(1)` at their bindings (no samplers:
+    /// kernels read texels with `textureLoad`, as draws do).
+    pub textures: Vec<super::interface::TextureSlot>,
 }
 
 /// The workgroup size of kernels.
@@ -219,6 +222,7 @@ pub fn compile_kernel(
     ));
     // A kernel reads per-point values from its buffers; the uniform block stays at binding 0
     // only when the shader reads uniforms (named spaces), and is moved out of the way otherwise.
+    let textures = mb.texture_slots();
     let (module, uniforms, uniform_size) = uniform_block(mb)?;
     let info =
         naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
@@ -239,11 +243,12 @@ pub fn compile_kernel(
         output_stride,
         uniforms,
         uniform_size,
+        textures,
     })
 }
 
 /// The module with its uniform block laid out: kept at binding 0 when it has fields, else (an
-/// unused placeholder) moved to group 1, where nothing refers to it.
+/// unused placeholder) moved to group 2, where nothing refers to it.
 #[allow(clippy::type_complexity)]
 fn uniform_block(
     mut mb: ModuleBuilder,
@@ -254,11 +259,11 @@ fn uniform_block(
         return Ok((mb.module, fields, size));
     }
     let mut module = mb.module;
-    // An unused resource is harmless to naga; wgpu's auto layout leaves it out. Give it group 1
-    // so it can never collide with the kernel's buffers at group 0.
+    // An unused resource is harmless to naga; wgpu's auto layout leaves it out. Give it group 2
+    // so it can never collide with the kernel's buffers (group 0) or textures (group 1).
     for (_, g) in module.global_variables.iter_mut() {
         if g.space == AddressSpace::Uniform {
-            g.binding = Some(ResourceBinding { group: 1, binding: 0 });
+            g.binding = Some(ResourceBinding { group: 2, binding: 0 });
         }
     }
     Ok((module, Vec::new(), 0))

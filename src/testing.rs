@@ -174,7 +174,7 @@ impl Shade {
             lights: self
                 .lights
                 .iter()
-                .map(|l| LightBinding { ambient: l.l.is_none(), categories: Vec::new() })
+                .map(|l| LightBinding { ambient: l.l.is_none(), ..LightBinding::default() })
                 .collect(),
             strings: loaded.strings.clone(),
         };

@@ -997,6 +997,49 @@ fn message_passing() {
 }
 
 #[test]
+fn lightsource_outside_illuminance_or_with_a_computed_name() {
+    let (codes, text) = run(&lines(&[
+        "surface s(string which = \"__nondiffuse\")",
+        "{",
+        "    float nd = 0;",
+        "    lightsource(\"__nondiffuse\", nd);",
+        "    illuminance(P) {",
+        "        lightsource(which, nd);",
+        "        Ci += Cl * (1 - nd);",
+        "    }",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0512", "E0505"], "{text}");
+    assert!(text.contains("`lightsource` exists only inside `illuminance`"), "{text}");
+    assert!(text.contains("the parameter's name as a string literal"), "{text}");
+    // Inside illuminance, with a literal name, it checks.
+    let (codes, text) = run(&lines(&[
+        "surface s()",
+        "{",
+        "    illuminance(P) {",
+        "        color tint = 1;",
+        "        float nd = 0;",
+        "        if (lightsource(\"__nondiffuse\", nd) == 1) { Ci += Cl * (1 - nd); }",
+        "        lightsource(\"tint\", tint);",
+        "    }",
+        "}",
+    ]));
+    assert!(codes.is_empty(), "{text}");
+    // A string differs from light to light: the category is read by `illuminance` instead.
+    let (codes, text) = run(&lines(&[
+        "surface s()",
+        "{",
+        "    illuminance(P) {",
+        "        string c = \"\";",
+        "        lightsource(\"__category\", c);",
+        "    }",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0402"], "{text}");
+    assert!(text.contains("illuminance(\"category\", ...)"), "{text}");
+}
+
+#[test]
 fn gather() {
     let (codes, text) = run(&lines(&[
         "surface ao(float samples = 16)",

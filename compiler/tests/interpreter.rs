@@ -76,7 +76,7 @@ fn illuminance_runs_once_per_light_inside_its_cone() {
         lights: vec![
             LightBinding::default(),
             LightBinding::default(),
-            LightBinding { ambient: true, categories: vec![] },
+            LightBinding { ambient: true, ..LightBinding::default() },
         ],
         strings: vec![],
     };
@@ -98,7 +98,7 @@ fn illuminance_runs_once_per_light_inside_its_cone() {
 fn light_sums_follow_the_ri_definitions() {
     let src = "surface t() { Ci = ambient() + diffuse(N); Oi = specular(N, vector(0, 0, 1), 0.25); }";
     let binding = Binding {
-        lights: vec![LightBinding::default(), LightBinding { ambient: true, categories: vec![] }],
+        lights: vec![LightBinding::default(), LightBinding { ambient: true, ..LightBinding::default() }],
         strings: vec![],
     };
     let program = compile(src, &binding);

@@ -45,7 +45,7 @@ fuzz_target!(|data: &[u8]| {
         prepared.iter().filter(|s| s.kind == ShaderKind::Light && !s.stanford).collect();
     let light_bindings: Vec<LightBinding> = lights
         .iter()
-        .map(|l| LightBinding { ambient: wgsl::is_ambient(l), categories: Vec::new() })
+        .map(|l| LightBinding::of(l, &[]))
         .collect();
     let bound: Vec<BoundLight> = lights
         .iter()

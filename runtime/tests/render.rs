@@ -238,3 +238,103 @@ fn pipelines_are_kept_per_device_and_reused_with_fresh_uniforms() {
     let c = compare(&cpu_image, &gpu_image, &t).unwrap();
     assert!(c.passes(&t), "{c:?}");
 }
+
+/// Two lights and a surface that reads them through message passing (`lightsource`, light
+/// categories, a light's output parameter), bound together by the renderer.
+const MESSAGES: &str = r#"
+light keylight(float intensity = 1; point from = point(0, 3, -3); float __nondiffuse = 0;
+               string __category = "key"; output varying float tint = 0) {
+    illuminate(from) {
+        Cl = intensity * color(1, 1, 1) / (L . L);
+        tint = 0.25 + 0.5 * step(0, ycomp(Ps));
+    }
+}
+
+light rimlight(float intensity = 1; point from = point(0, -3, -3)) {
+    illuminate(from) {
+        Cl = intensity * color(1, 1, 1) / (L . L);
+    }
+}
+
+surface messages(float usetint = 0; float only = 0) {
+    color c = 0;
+    normal Nf = normalize(N);
+    if (only == 1) {
+        illuminance("key", P, Nf, PI / 2) {
+            c += Cl * max(0, normalize(L) . Nf);
+        }
+    } else if (only == 2) {
+        illuminance("-key", P, Nf, PI / 2) {
+            c += Cl * max(0, normalize(L) . Nf);
+        }
+    } else {
+        illuminance(P, Nf, PI / 2) {
+            float nd = 0;
+            float t = 1;
+            // The rim light has no `__nondiffuse`: 0, and nd keeps its value.
+            lightsource("__nondiffuse", nd);
+            // A colour `intensity` exists in neither light: nothing is written.
+            color wrong = 1;
+            float typed = lightsource("intensity", wrong);
+            if (usetint == 1) {
+                lightsource("tint", t);
+            }
+            c += Cl * (1 - nd) * t * max(0, normalize(L) . Nf) * wrong * (1 - typed);
+        }
+    }
+    Ci = c;
+}
+"#;
+
+#[test]
+fn surfaces_read_their_lights_by_message_passing_on_both_backends() {
+    let scene = |surface: &str, key: &str| {
+        format!(
+            "[output]\nwidth = 40\nheight = 40\n[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\nfov = 40\n\
+             [[light]]\nshader = \"messages.sl\"\nname = \"keylight\"\nparams = {{ intensity = 20.0{key} }}\n\
+             [[light]]\nshader = \"messages.sl\"\nname = \"rimlight\"\nparams = {{ intensity = 20.0 }}\n\
+             [[object]]\nmesh = \"sphere\"\ndetail = 32\nshader = \"messages.sl\"\nname = \"messages\"\n\
+             params = {{ {surface} }}\n"
+        )
+    };
+    let gpu = patina_runtime::gpu::for_tests();
+    let render = |label: &str, surface: &str, key: &str| -> Image {
+        let s = written_scene("messages", MESSAGES, &scene(surface, key));
+        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{label}: {e}"));
+        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
+        if let Some(gpu) = &gpu {
+            let image =
+                render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
+            let t = Thresholds::default();
+            let c = compare(&cpu, &image, &t).unwrap();
+            assert!(c.passes(&t), "{label}: GPU and CPU images differ: {c:?}");
+        }
+        cpu
+    };
+    let key = render("the key light's category", "only = 1", "");
+    let rim = render("not the key light's category", "only = 2", "");
+    let both = render("both lights", "usetint = 0", "");
+    let lit = |image: &Image| image.pixels.iter().filter(|p| p[0] > 0.01).count();
+    assert!(
+        lit(&key) > 50 && lit(&rim) > 50 && key.pixels != rim.pixels,
+        "the categories select different lights"
+    );
+    for ((k, r), b) in key.pixels.iter().zip(&rim.pixels).zip(&both.pixels) {
+        assert!((k[0] + r[0] - b[0]).abs() < 1e-5, "both lights are the sum of the categories");
+    }
+    // `__nondiffuse = 1` on the key light: the loop leaves it out, as if only the rim lit.
+    let nondiffuse = render("__nondiffuse", "usetint = 0", ", __nondiffuse = 1.0");
+    assert_eq!(nondiffuse.pixels, rim.pixels);
+    // The key light's output parameter, computed per point: 0.75 above the camera's axis, 0.25 below.
+    let tinted = render("the key light's output", "usetint = 1", "");
+    let mut seen = [false; 2];
+    for ((k, r), t) in key.pixels.iter().zip(&rim.pixels).zip(&tinted.pixels) {
+        if k[0] > 0.01 && k[0] < 0.99 && t[0] < 0.99 {
+            let tint = (t[0] - r[0]) / k[0];
+            let near = |x: f32| (tint - x).abs() < 2e-3;
+            assert!(near(0.25) || near(0.75), "tint {tint}");
+            seen[usize::from(near(0.75))] = true;
+        }
+    }
+    assert_eq!(seen, [true, true], "both sides of the sphere are lit by the key");
+}

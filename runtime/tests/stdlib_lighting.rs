@@ -256,7 +256,11 @@ fn rm_light_sums_are_the_builtins_bit_for_bit() {
 
 /// The lights of the sums: illuminating, ambient, illuminating.
 fn sum_lights() -> Vec<LightBinding> {
-    vec![LightBinding::default(), LightBinding { ambient: true, categories: vec![] }, LightBinding::default()]
+    vec![
+        LightBinding::default(),
+        LightBinding { ambient: true, ..LightBinding::default() },
+        LightBinding::default(),
+    ]
 }
 
 /// The measured bounds (docs/stdlib/lighting.md): f32 interpreter against the f64 port, and the

@@ -44,7 +44,7 @@ pub fn run(args: EvalArgs) -> Result<ExitCode, String> {
         binding.lights.push(LightBinding::default());
     }
     for _ in &ambient {
-        binding.lights.push(LightBinding { ambient: true, categories: Vec::new() });
+        binding.lights.push(LightBinding { ambient: true, ..LightBinding::default() });
     }
     for s in &args.string {
         let (k, v) = s.split_once('=').ok_or_else(|| format!("`--string {s}`: expected NAME=VALUE"))?;

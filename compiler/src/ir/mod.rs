@@ -370,6 +370,20 @@ impl Shader {
     }
 }
 
+/// Whether a light shader is ambient: it has no `illuminate` or `solar` (RenderMan's rule).
+pub fn is_ambient(light: &Shader) -> bool {
+    fn emits(block: &[Stmt]) -> bool {
+        block.iter().any(|s| match s {
+            Stmt::Emit { .. } => true,
+            Stmt::If { then, otherwise, .. } => emits(then) || emits(otherwise),
+            Stmt::Loop { body, step, .. } => emits(body) || emits(step),
+            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } => emits(body),
+            _ => false,
+        })
+    }
+    !emits(&light.body)
+}
+
 /// The checked program: every shader of a source file.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Program {

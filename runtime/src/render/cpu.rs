@@ -4,7 +4,7 @@
 //! the seeds.
 
 use glam::Vec3;
-use patina_compiler::backend::cpu::{CpuProgram, Evaluator, POINT_INDEX};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, POINT_INDEX, lightsource_input};
 use patina_compiler::backend::wgsl::interface::Output;
 use patina_compiler::split::StageKind;
 
@@ -360,11 +360,39 @@ fn shade_batch(
         // A light that never sets `L` (an ambient light without `solar` or `illuminate`) leaves
         // it zero, as on the GPU.
         let has_l = lp.slot("L").is_some();
-        let wanted: &[&str] = if has_l { &["L", "Cl"] } else { &["Cl"] };
+        // The light's parameters the surface reads with `lightsource`: from the light's program
+        // after it ran when it has them as variables, else their bound values.
+        let messages: Vec<(String, &str)> = prepared.lights[k]
+            .loaded
+            .shader
+            .params
+            .iter()
+            .map(|p| prepared.lights[k].loaded.shader.local(*p).name.as_str())
+            .map(|name| (lightsource_input(name, k), name))
+            .filter(|(input, _)| program.slot(input).is_some())
+            .collect();
+        let read_back: Vec<&str> =
+            messages.iter().map(|(_, name)| *name).filter(|name| lp.slot(name).is_some()).collect();
+        let wanted: Vec<&str> = if has_l { vec!["L", "Cl"] } else { vec!["Cl"] }
+            .into_iter()
+            .chain(read_back.iter().copied())
+            .collect();
         let mut outs =
-            light.eval_points(n, &inputs, wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
+            light.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
         if !has_l {
             outs.insert(0, vec![0.0; n * 3]);
+        }
+        for (input, name) in &messages {
+            let column = match read_back.iter().position(|r| r == name) {
+                Some(at) => outs[2 + at].clone(),
+                None => {
+                    let values = &prepared.lights[k].values;
+                    let value =
+                        values.iter().find(|(v, _)| v == name).map(|(_, v)| v.as_slice()).unwrap_or(&[]);
+                    (0..n).flat_map(|_| value.iter().copied()).collect()
+                }
+            };
+            columns.push((input.clone(), column));
         }
         let (mut l, cl) = (outs[0].clone(), outs[1].clone());
         for x in &mut l {

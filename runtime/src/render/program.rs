@@ -191,8 +191,10 @@ pub fn load(
             .filter(|(name, _)| !ty(name).is_some_and(camera_dependent))
             .map(|(name, value)| Fixed { name: name.clone(), value: value.clone() })
             .collect();
-        // The renderer reads back Ci, Oi or the result, never an output parameter.
-        let bound = patina_compiler::bind::specialize(shader_ir, &fixed, &strings, Consumed::Only(&[]));
+        // The renderer reads back Ci, Oi or the result, never an output parameter; but a
+        // surface may read a light's output parameters with `lightsource`.
+        let consumed = if kind == ShaderKind::Light { Consumed::All } else { Consumed::Only(&[]) };
+        let bound = patina_compiler::bind::specialize(shader_ir, &fixed, &strings, consumed);
         (bound.shader, bound.decisions)
     } else {
         (shader_ir.clone(), Vec::new())
@@ -285,10 +287,7 @@ pub fn light_program(loaded: LoadedShader, spaces: &[(String, Mat4)]) -> Result<
 
 /// The interpreter's bindings for the lights.
 pub fn light_bindings(lights: &[LightProgram]) -> Vec<LightBinding> {
-    lights
-        .iter()
-        .map(|l| LightBinding { ambient: wgsl::is_ambient(&l.loaded.shader), categories: Vec::new() })
-        .collect()
+    lights.iter().map(|l| LightBinding::of(&l.loaded.shader, &l.loaded.strings)).collect()
 }
 
 /// Splits and compiles a surface for both backends and runs its host program.

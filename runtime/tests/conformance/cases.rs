@@ -570,9 +570,9 @@ pub fn light_sums() -> Vec<Case> {
 /// harness their `L[k]` and `Cl[k]` are per-point inputs).
 pub fn light_sum_lights() -> Vec<LightBinding> {
     vec![
-        LightBinding { ambient: false, categories: vec![] },
-        LightBinding { ambient: true, categories: vec![] },
-        LightBinding { ambient: false, categories: vec![] },
+        LightBinding { ambient: false, ..LightBinding::default() },
+        LightBinding { ambient: true, ..LightBinding::default() },
+        LightBinding { ambient: false, ..LightBinding::default() },
     ]
 }
 

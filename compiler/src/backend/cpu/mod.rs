@@ -13,5 +13,7 @@ pub mod scalar;
 
 pub use eval::{CpuProgram, EvalError, Evaluator, SlotId, SlotInfo};
 pub use exec::Texture;
-pub use lower::{Binding, LightBinding, POINT_INDEX, SlotKind, UNIFORM_RANDOM_POINT};
+pub use lower::{
+    Binding, CATEGORY_PARAM, LightBinding, POINT_INDEX, SlotKind, UNIFORM_RANDOM_POINT, lightsource_input,
+};
 pub(crate) use lower::{category_matches, element_type};

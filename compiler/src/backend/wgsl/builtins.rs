@@ -250,6 +250,7 @@ impl Translator<'_> {
             "diffuse" => self.light_sum(LightTerm::Diffuse, &vals)?,
             "specular" => self.light_sum(LightTerm::Specular, &vals)?,
             "phong" => self.light_sum(LightTerm::Phong, &vals)?,
+            "lightsource" => self.lightsource(args, span)?,
             "specularbrdf" => {
                 let l = self.normalize(v(0));
                 let brdf = self.specular_brdf(l, v(1), v(2), v(3));
@@ -443,6 +444,40 @@ impl Translator<'_> {
         let d = self.math2(M::Max, zero, d);
         let e = self.binary(Op::Divide, one, roughness);
         self.math2(M::Pow, d, e)
+    }
+
+    /// `lightsource(name, v)` inside `illuminance`, visiting light `self.light`: as the
+    /// interpreter decides it from the binding (`backend/cpu/lower/builtins.rs`), 1 with the
+    /// light's parameter written to `v`, or 0. The light's function runs earlier in the same
+    /// fragment entry point: a parameter it writes is read from its variable, any other from
+    /// the uniform block, where the light's parameters live.
+    fn lightsource(&mut self, args: &[ExprId], span: crate::source::Span) -> Result<Value, Diagnostic> {
+        let ty = self.shader.expr(args[1]).ty;
+        let found = match (self.string_value(args[0]), self.light) {
+            (Some(name), Some(k)) if self.lights[k].params.iter().any(|(n, t)| *n == name && *t == ty) => {
+                Some((name, k))
+            }
+            _ => None,
+        };
+        let Some((name, k)) = found else { return Ok(self.float(0.0)) };
+        let Some(light) = self.light_shaders.get(k).copied() else {
+            return Err(self.error(span, "`lightsource` needs the light's shader in the same module"));
+        };
+        let Some(&param) = light.params.iter().find(|p| light.local(**p).name == name) else {
+            return Err(self.error(span, format!("the light has no parameter `{name}`")));
+        };
+        let prefix = format!("l{k}_");
+        let value = if crate::ir::stores::stores(light)[param.0 as usize].count > 0 {
+            let names = super::body::variable_names(light, &prefix);
+            let var = self.mb.private(&names[&param], ty);
+            let p = self.pointer(var);
+            self.load(p)
+        } else {
+            let source = super::interface::UniformSource::LightParam { light: k, name: name.to_string() };
+            super::entry::uniform_input(self, &format!("{prefix}{name}"), ty, source)
+        };
+        self.write_output(args[1], value);
+        Ok(self.float(1.0))
     }
 
     /// The RenderMan light sums, as the RI specification defines them with `illuminance`.

@@ -31,7 +31,7 @@ use naga::Span as NSpan;
 
 use crate::backend::cpu::LightBinding;
 use crate::diag::{Code, Diagnostic};
-use crate::ir::{Shader, Stmt};
+use crate::ir::Shader;
 use crate::source::Span;
 use crate::split::Stages;
 use body::Translator;
@@ -48,7 +48,8 @@ pub struct BoundLight<'a> {
     pub shader: &'a Shader,
     /// Its string parameters' values.
     pub strings: Vec<(String, String)>,
-    /// Its categories (for `illuminance("category", ...)`).
+    /// Categories besides those its `__category` parameter names (for `illuminance("category",
+    /// ...)`).
     pub categories: Vec<String>,
 }
 
@@ -93,19 +94,7 @@ impl GpuProgram {
     }
 }
 
-/// Whether a light shader is ambient: it has no `illuminate` or `solar` (RenderMan's rule).
-pub fn is_ambient(light: &Shader) -> bool {
-    fn emits(block: &[Stmt]) -> bool {
-        block.iter().any(|s| match s {
-            Stmt::Emit { .. } => true,
-            Stmt::If { then, otherwise, .. } => emits(then) || emits(otherwise),
-            Stmt::Loop { body, step, .. } => emits(body) || emits(step),
-            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } => emits(body),
-            _ => false,
-        })
-    }
-    !emits(&light.body)
-}
+pub use crate::ir::is_ambient;
 
 /// Compiles the stages of a surface shader with its bound lights into a validated module.
 pub fn compile(
@@ -140,7 +129,11 @@ pub fn compile_shaded(
     body::check_light_count(&stages.fragment, &lights.iter().map(|l| l.shader).collect::<Vec<_>>())?;
     let bindings: Vec<LightBinding> = lights
         .iter()
-        .map(|l| LightBinding { ambient: is_ambient(l.shader), categories: l.categories.clone() })
+        .map(|l| {
+            let mut binding = LightBinding::of(l.shader, &l.strings);
+            binding.categories.extend(l.categories.iter().cloned());
+            binding
+        })
         .collect();
     let mut mb = ModuleBuilder::new();
 
@@ -166,6 +159,7 @@ pub fn compile_shaded(
     }
     let body = |mb: &mut ModuleBuilder, shader: &Shader, name: &str| -> Result<_, Diagnostic> {
         let mut t = Translator::new(mb, shader, "", &bindings, strings, name);
+        t.light_shaders = lights.iter().map(|l| l.shader).collect();
         t.block(&shader.body)?;
         let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
         drop(t);

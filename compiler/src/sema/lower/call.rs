@@ -8,7 +8,7 @@ use super::Lowerer;
 use super::expr::suggest;
 use super::stmt::declared_type;
 use crate::diag::{Code, Diagnostic};
-use crate::ir::types::Type;
+use crate::ir::types::{Base, Type};
 use crate::ir::{Block, ExprId, ExprKind};
 use crate::sema::builtins::{self, Builtin, Context};
 use crate::sema::convert;
@@ -188,6 +188,22 @@ impl Lowerer<'_> {
         }
         let lowered: Vec<ExprId> = lowered.into_iter().collect::<Option<_>>()?;
         let types: Vec<Type> = lowered.iter().map(|&a| self.ty(a)).collect();
+        if builtin_call
+            && callee.name == "lightsource"
+            && types.get(1).is_some_and(|t| t.base == Base::String)
+        {
+            self.error(
+                Diagnostic::error(
+                    Code::MessagePassing,
+                    "`lightsource` cannot read a string parameter",
+                    args[1].span,
+                    "a string variable",
+                )
+                .with_note("strings are compile-time values, and this one would differ from light to light")
+                .with_help("select lights by category with `illuminance(\"category\", ...)`: a light's `__category` parameter names its categories"),
+            );
+            return None;
+        }
         let chosen = self.resolve(callee, &candidates, &types, expected, span)?;
         match chosen {
             Candidate::User(f) => {
@@ -210,6 +226,27 @@ impl Lowerer<'_> {
                 self.inline_call(f, &args, span, outer, in_library, out)
             }
             Candidate::Builtin(b) => {
+                if b.name == "lightsource" && self.light_loop != super::LightLoop::Illuminance {
+                    self.error(
+                        Diagnostic::error(
+                            Code::OutsideLightLoop,
+                            "`lightsource` exists only inside `illuminance`",
+                            callee.span,
+                            "it reads a parameter of the light being visited",
+                        )
+                        .with_help("move this into an `illuminance` block"),
+                    );
+                    return None;
+                }
+                if b.name == "lightsource" && !matches!(args[0].kind, ast::ExprKind::String(_)) {
+                    self.error(Diagnostic::error(
+                        Code::TypeMismatch,
+                        "`lightsource` needs the parameter's name as a string literal",
+                        args[0].span,
+                        "not a string literal",
+                    ));
+                    return None;
+                }
                 match b.context {
                     Context::Surface if self.kind != ast::ShaderKind::Surface => {
                         return self.wrong_kind(callee, "surface");

@@ -36,7 +36,7 @@ pub struct Functions<'a> {
 
 /// What the statements being lowered are inside of.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-enum LightLoop {
+pub(super) enum LightLoop {
     /// Not inside a light loop.
     None,
     /// Inside `illuminance` (surface shaders).

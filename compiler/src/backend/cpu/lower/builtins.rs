@@ -9,6 +9,12 @@ use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
 use crate::sema::builtins::Builtin;
 
+/// The name of the input that gives `lightsource(name, ...)` light `k`'s parameter `name` at
+/// each point: the caller reads it from the light's program after running it.
+pub fn lightsource_input(name: &str, k: usize) -> String {
+    format!("lightsource({name})[{k}]")
+}
+
 impl Lower<'_> {
     /// A call of a built-in.
     pub(super) fn builtin(
@@ -186,6 +192,7 @@ impl Lower<'_> {
             "diffuse" => self.light_sum(LightTerm::Diffuse, &vals),
             "specular" => self.light_sum(LightTerm::Specular, &vals),
             "phong" => self.light_sum(LightTerm::Phong, &vals),
+            "lightsource" => self.lightsource(&vals[0], args[1], span)?,
             "specularbrdf" => {
                 let l = self.normalize(f(0));
                 let brdf = self.specular_brdf(&l, f(1), f(2), f(3)[0]);
@@ -272,6 +279,26 @@ impl Lower<'_> {
             sum = self.zip(Binary::Add, &sum, v?.floats());
         }
         Ok(Val::Float(sum))
+    }
+
+    /// `lightsource(name, v)` inside `illuminance`, visiting light `self.light`: when the light
+    /// has a parameter `name` of `v`'s type, its value at each point (the caller's input
+    /// [`lightsource_input`]) is written to `v` and the call is 1; otherwise it is 0. Which it
+    /// is, binding decides.
+    fn lightsource(&mut self, name: &Val, out: ExprId, span: crate::source::Span) -> Result<Val, Diagnostic> {
+        let ty = self.shader.expr(out).ty;
+        let found = match (name, self.light) {
+            (Val::Str(name), Some(k)) => self.binding.lights[k]
+                .params
+                .iter()
+                .any(|(n, t)| n == name && *t == ty)
+                .then(|| (name.clone(), k)),
+            _ => None,
+        };
+        let Some((name, k)) = found else { return Ok(Val::Float(vec![self.emit.float(0.0)])) };
+        let regs = self.named_input(&lightsource_input(&name, k), ty, false);
+        self.write_output(out, &Val::Float(regs), span)?;
+        Ok(Val::Float(vec![self.emit.float(1.0)]))
     }
 
     /// Stores into the local passed as an `output` argument.

@@ -6,6 +6,7 @@
 //! built-ins of its own; it reads [`ExprKind::Seed`] registers the caller fills).
 
 mod builtins;
+pub use builtins::lightsource_input;
 mod colour;
 mod curves;
 mod emit;
@@ -49,6 +50,42 @@ pub struct LightBinding {
     pub ambient: bool,
     /// The categories it belongs to (`illuminance("category", ...)` selects on them).
     pub categories: Vec<String>,
+    /// Its parameters, by name and type: what `lightsource("name", v)` can read from it.
+    pub params: Vec<(SmolStr, Type)>,
+}
+
+/// The light parameter that names a light's categories (RenderMan's convention).
+pub const CATEGORY_PARAM: &str = "__category";
+
+impl LightBinding {
+    /// The binding of light shader `light` whose string parameters have the values `strings`
+    /// (the others their literal defaults): ambient when it emits no light, in the categories
+    /// its `__category` parameter lists (comma-separated), with its parameters for `lightsource`.
+    pub fn of(light: &Shader, strings: &[(String, String)]) -> LightBinding {
+        let params: Vec<(SmolStr, Type)> =
+            light.params.iter().map(|p| (light.local(*p).name.clone(), light.local(*p).ty)).collect();
+        let category =
+            light.params.iter().map(|p| light.local(*p)).find(|l| l.name == CATEGORY_PARAM).and_then(|l| {
+                match strings.iter().find(|(n, _)| n == CATEGORY_PARAM) {
+                    Some((_, v)) => Some(v.clone()),
+                    None => match l.kind {
+                        LocalKind::Param { default: Some(d), .. } => match &light.expr(d).kind {
+                            ExprKind::Literal(crate::ir::Literal::String(s)) => Some(s.to_string()),
+                            _ => None,
+                        },
+                        _ => None,
+                    },
+                }
+            });
+        let categories = category
+            .iter()
+            .flat_map(|c| c.split(','))
+            .map(str::trim)
+            .filter(|c| !c.is_empty())
+            .map(String::from)
+            .collect();
+        LightBinding { ambient: crate::ir::is_ambient(light), categories, params }
+    }
 }
 
 /// What a slot of registers holds, for the caller.

@@ -53,6 +53,9 @@ pub(crate) struct Translator<'a> {
     pub prefix: String,
     /// The bound lights (for `illuminance` and the light sums).
     pub lights: &'a [LightBinding],
+    /// Their shaders, where their functions are in the same module (a surface's body: what
+    /// `lightsource` reads); empty otherwise.
+    pub light_shaders: Vec<&'a Shader>,
     /// Values of string parameters.
     pub strings: &'a [(String, String)],
     pub fb: FnBuilder,
@@ -90,6 +93,7 @@ impl<'a> Translator<'a> {
             shader,
             prefix: prefix.to_string(),
             lights,
+            light_shaders: Vec::new(),
             strings,
             fb: FnBuilder::new(function),
             light: None,

@@ -309,7 +309,7 @@ fn init_uniform_inputs(t: &mut Translator, shader: &Shader, uses: &Uses, stage: 
 
 /// A value read from the uniform block in the language's form (booleans from `u32`, arrays
 /// unpadded element by element).
-fn uniform_input(t: &mut Translator, name: &str, ty: Type, source: UniformSource) -> Value {
+pub(super) fn uniform_input(t: &mut Translator, name: &str, ty: Type, source: UniformSource) -> Value {
     let raw = t.uniform_value(name, ty, source);
     if let Some(n) = ty.array {
         let element = Type::of(ty.base);

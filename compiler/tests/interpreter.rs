@@ -310,3 +310,29 @@ fn nested_integrate_sums_over_every_light() {
     // integrate(a) = 2a; sum over j of 2a * b_j = 2a * 0.75.
     assert_eq!(out[0], vec![1.5, 3.0, 4.5, 0.75]);
 }
+
+/// Issue 24: forms of third-party RenderMan shaders that did not parse or were misread: a storage
+/// class on a function's result (`uniform float f()`), and casts of a negated operand
+/// (`point -1e10`, `vector -I`), which read as subtractions from the type word.
+#[test]
+fn result_storage_classes_and_casts_of_negated_operands() {
+    let src = "uniform float twice(float x) { return 2 * x; }
+        varying color shade(color c) { return c * 0.5; }
+        surface t() {
+            point far = point -1e10;
+            vector v = vector -I;
+            color c = color -1 + 3;
+            Ci = shade(c) * twice(xcomp(far) * 1e-10) + color(xcomp(v), ycomp(v), zcomp(v));
+        }";
+    let out = run(src, 1, &[("I", &[1.0, 2.0, 4.0])], &["Ci"]);
+    // c = (-1) + 3 = 2 per channel; shade(c) * twice(-1) = 1 * -2; minus I.
+    assert_eq!(out[0], vec![-3.0, -4.0, -6.0]);
+    // Only a storage class may qualify a result.
+    let checked = patina_compiler::check_source(
+        "test.sl",
+        "output float f() { return 1; } surface t() { Ci = f(); }",
+        &MemoryLoader::default(),
+    );
+    let codes: Vec<&str> = checked.diagnostics.iter().map(|d| d.code.as_str()).collect();
+    assert_eq!(codes, ["E0519"], "{:?}", checked.diagnostics);
+}

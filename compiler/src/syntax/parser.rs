@@ -186,6 +186,32 @@ impl Ctx<'_> {
         self.report(errors::else_without_if(i, self.tokens));
     }
 
+    /// Checks the qualifiers written before a function's result type: RenderMan allows one
+    /// storage class (`uniform float f()`), which has no effect since rates are inferred; any
+    /// other qualifier is an error.
+    pub fn result_qualifiers(&self, list: Vec<Qualifier>) {
+        for item in &list {
+            let (i, word) = match item {
+                Qualifier::Rate(RateQualifier::Uniform | RateQualifier::Varying, _) => continue,
+                Qualifier::Rate(rate, i) => (*i, rate.keyword()),
+                Qualifier::Perlight(i) => (*i, "perlight"),
+                Qualifier::Output(i) => (*i, "output"),
+                Qualifier::Extern(i) => (*i, "extern"),
+            };
+            self.report(
+                Diagnostic::error(
+                    Code::InvalidQualifier,
+                    format!("`{word}` cannot qualify a function's result"),
+                    self.span(i, i + 1),
+                    "not allowed here",
+                )
+                .with_help("a function's result may be declared `uniform` or `varying`, or nothing"),
+            );
+        }
+        // Conflicts (`uniform varying float f()`) are reported as for declarations.
+        let _ = self.qualifiers(list);
+    }
+
     /// The keyword at token `i`, used as a name: reported, and taken as the name.
     pub fn keyword_as_name(&self, i: usize) -> Ident {
         self.report(errors::keyword_as_name(self.tokens[i], self.text(i)));

@@ -78,6 +78,16 @@ impl Lowerer<'_> {
                 let value = self.expr(operand, expected, out)?;
                 self.unary(*op, value, span)
             }
+            E::Binary { op: ast::BinaryOp::Sub, lhs, rhs } if self.negated_cast(lhs).is_some() => {
+                // RenderMan's `point -1e10`: a cast of a negated operand, which the grammar reads
+                // as a subtraction from the type word (in Stanford code the word may be a name).
+                let ty = self.negated_cast(lhs)?;
+                let negated = ast::ExprKind::Unary { op: ast::UnaryOp::Neg, operand: rhs.clone() };
+                let operand =
+                    ast::Expr { kind: negated, span: crate::source::Span { start: lhs.span.end, ..span } };
+                let cast = ast::Expr { kind: E::Cast { ty, space: None, operand: Box::new(operand) }, span };
+                self.expr(&cast, expected, out)
+            }
             E::Binary { op, lhs, rhs } => {
                 let logical = matches!(op, ast::BinaryOp::And | ast::BinaryOp::Or);
                 // Arithmetic passes the wanted type on, so `point p = r * (x, y, z)` types the tuple.
@@ -163,6 +173,23 @@ impl Lowerer<'_> {
     }
 
     /// A name in an expression: a local, a module variable, or a predefined variable.
+    /// The type `lhs` names when it is a RenderMan type word used as a value in RenderMan code
+    /// and nothing of that name is declared: the left side of `point -1e10`.
+    fn negated_cast(&self, lhs: &ast::Expr) -> Option<ast::TypeSpec> {
+        let ast::ExprKind::Name(ident) = &lhs.kind else { return None };
+        let name = match ident.name.as_str() {
+            "color" => ast::TypeName::Color,
+            "point" => ast::TypeName::Point,
+            "vector" => ast::TypeName::Vector,
+            "normal" => ast::TypeName::Normal,
+            "matrix" => ast::TypeName::Matrix,
+            _ => return None,
+        };
+        let declared = self.lookup_local(&ident.name).is_some()
+            || crate::sema::globals::lookup(&ident.name, self.kind, self.stanford).is_some();
+        (!self.stanford && !declared).then_some(ast::TypeSpec { name, span: ident.span })
+    }
+
     fn name(&mut self, name: &ast::Ident) -> Option<ExprId> {
         if let Some(id) = self.lookup_local(&name.name) {
             let ty = self.locals[id.0 as usize].ty;

@@ -273,6 +273,11 @@ fn gallery_renders_compares_and_writes_a_page() {
     assert!(stderr.contains("broken: ") && stderr.contains("missing.sl"), "{stderr}");
     let md = std::fs::read_to_string(&page).expect("the page is written");
     assert!(md.contains("| [flame](#flame) | 160×240 |"), "{md}");
+    if gpu {
+        // No pixel of either picture is NaN or infinite: the NaN column says 0.
+        let row = md.lines().find(|l| l.starts_with("| [flame](#flame)")).unwrap_or_default();
+        assert!(row.ends_with("| 0 | yes |"), "{row}");
+    }
     assert!(md.contains("![flame](img/flame.png)"), "{md}");
     assert!(md.contains("The Stanford-style procedural flame"), "the caption is the scene's comment: {md}");
     assert!(md.contains("| broken | failed: "), "{md}");

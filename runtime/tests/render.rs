@@ -338,3 +338,42 @@ fn surfaces_read_their_lights_by_message_passing_on_both_backends() {
     }
     assert_eq!(seen, [true, true], "both sides of the sphere are lit by the key");
 }
+
+/// Issue 24: a string parameter passed on to a function as a space name ("a string used as a
+/// value" on both backends before): the function's parameter reads the caller's string, as if
+/// the name were written in the call.
+#[test]
+fn a_string_parameter_passed_on_as_a_space_name_renders_on_both_backends() {
+    let source = "float along(string space; point p) {
+            point q = transform(space, p);
+            return xcomp(q) * 0.2 + 0.5;
+        }
+        surface passed(string myspace = \"world\") { Ci = along(myspace, P); }
+        surface written() { Ci = along(\"world\", P); }";
+    let scene = |name: &str| {
+        format!(
+            "[output]\nwidth = 24\nheight = 24\n[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\nfov = 40\n\
+             [[object]]\nmesh = \"sphere\"\ndetail = 16\nshader = \"spaces.sl\"\nname = \"{name}\"\n"
+        )
+    };
+    let gpu = patina_runtime::gpu::for_tests();
+    let render = |name: &str| -> Image {
+        let s = written_scene("spaces", source, &scene(name));
+        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{name}: {e}"));
+        if let Some(gpu) = &gpu {
+            let image =
+                render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let t = Thresholds::default();
+            let c = compare(&cpu, &image, &t).unwrap();
+            assert!(c.passes(&t), "{name}: GPU and CPU images differ: {c:?}");
+        }
+        cpu
+    };
+    let (passed, written) = (render("passed"), render("written"));
+    assert_eq!(passed.pixels, written.pixels);
+    // World x varies across the sphere: the space was applied, not dropped.
+    let covered: Vec<f32> = passed.pixels.iter().filter(|p| p[3] > 0.0 && p[0] > 0.0).map(|p| p[0]).collect();
+    let (lo, hi) = covered.iter().fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
+    assert!(covered.len() > 50 && hi - lo > 0.2, "{} pixels, {lo} to {hi}", covered.len());
+}

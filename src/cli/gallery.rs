@@ -79,8 +79,8 @@ pub fn run(args: GalleryArgs) -> Result<ExitCode, String> {
                     Some(c) => {
                         failed = true;
                         format!(
-                            "DIFFER (max {:.2e}, {} of {} pixels fail)",
-                            c.max_error, c.failing_pixels, c.pixels
+                            "DIFFER (max {:.2e}, {} of {} pixels fail, {} with NaN or infinity)",
+                            c.max_error, c.failing_pixels, c.pixels, c.nan_pixels
                         )
                     }
                     None => "CPU only".into(),
@@ -200,31 +200,33 @@ fn page(entries: &[Entry], args: &GalleryArgs, markdown: &Path, device: &str) ->
          is the CPU reference (the interpreter's vertex and fragment stages and the rasterizer), and \
          **compile** is compiling the scene's shaders for both backends. **max |Δ|** is the largest \
          difference of any channel of any pixel between the two images, **failing** the share of \
-         pixels that differ by more than the fail threshold, and **agree** whether the two meet the \
+         pixels that differ by more than the fail threshold, **NaN** the pixels with a NaN or an \
+         infinity in either image (left out of the other figures), and **agree** whether the two meet the \
          scene's thresholds: OSL's (fail 0.004, hard fail 0.01, at most 2% failing) unless the \
          scene's `[compare]` table says otherwise, with its reason under the picture. The tests \
          (`runtime/tests/gallery/`) render each scene smaller and check its own properties too.\n"
     );
-    let _ = writeln!(out, "| scene | size | compile | GPU | CPU | max \\|Δ\\| | failing | agree |");
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "| scene | size | compile | GPU | CPU | max \\|Δ\\| | failing | NaN | agree |");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
     for e in entries {
         match &e.result {
             Ok(m) => {
-                let (max, failing, agree) = match &m.comparison {
+                let (max, failing, nan, agree) = match &m.comparison {
                     Some(c) => (
                         format!("{:.1e}", c.max_error),
                         format!("{:.2}%", 100.0 * c.failing_pixels as f64 / c.pixels.max(1) as f64),
+                        c.nan_pixels.to_string(),
                         match (c.passes(&m.thresholds), &m.reason) {
                             (true, None) => "yes",
                             (true, Some(_)) => "yes (own thresholds)",
                             (false, _) => "**no**",
                         },
                     ),
-                    None => ("-".into(), "-".into(), "-"),
+                    None => ("-".into(), "-".into(), "-".into(), "-"),
                 };
                 let _ = writeln!(
                     out,
-                    "| [{name}](#{name}) | {}×{} | {:.0} ms | {} | {:.0} ms | {max} | {failing} | {agree} |",
+                    "| [{name}](#{name}) | {}×{} | {:.0} ms | {} | {:.0} ms | {max} | {failing} | {nan} | {agree} |",
                     m.width,
                     m.height,
                     ms(m.compile),
@@ -236,7 +238,7 @@ fn page(entries: &[Entry], args: &GalleryArgs, markdown: &Path, device: &str) ->
             Err(message) => {
                 let _ = writeln!(
                     out,
-                    "| {} | failed: {} | | | | | | |",
+                    "| {} | failed: {} | | | | | | | |",
                     e.name,
                     message.lines().next().unwrap_or("")
                 );

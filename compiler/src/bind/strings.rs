@@ -1,9 +1,10 @@
 //! String variables read where their value is known become that value: strings are compile-time
 //! values, and the GPU backend resolves a string only through literals and parameters. A string
-//! variable stored in straight-line code of the shader's body (not in a branch, a loop, an inlined
-//! call or a light construct) is known until the next statement that may store it; its reads in
-//! between, nested ones included, are replaced by the stored value (`uniform string f = concat(a,
-//! ".tex"); ... texture(f, s, t)` reads `concat(a, ".tex")`).
+//! variable stored in straight-line code of the shader's body or of an inlined call in it (not in a
+//! branch, a loop or a light construct) is known until the next statement that may store it; its
+//! reads in between, nested ones included, are replaced by the stored value (`uniform string f =
+//! concat(a, ".tex"); ... texture(f, s, t)` reads `concat(a, ".tex")`, and a function's string
+//! parameter, such as a space name passed on, reads the caller's string).
 
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -59,8 +60,37 @@ fn walk(
             }
             _ => {}
         }
-        stmt.for_each_block(|b| walk(shader, b, known, outputs, false));
+        match stmt {
+            // An inlined call runs its body once, in order: straight-line code as much as the
+            // code around it. A `Return` may leave it early, so what it stores is not known
+            // after it.
+            Stmt::Inline { body, .. } => {
+                walk(shader, body, known, outputs, straight);
+                if returns(body) {
+                    let mut stored = Vec::new();
+                    stored_in(shader, body, &mut stored);
+                    for l in stored {
+                        known.remove(&l);
+                    }
+                }
+            }
+            _ => stmt.for_each_block(|b| walk(shader, b, known, outputs, false)),
+        }
     }
+}
+
+/// Whether `block` can leave an inlined call early (a `Return` of its own, not of a call
+/// nested in it).
+fn returns(block: &[Stmt]) -> bool {
+    block.iter().any(|s| match s {
+        Stmt::Return => true,
+        Stmt::Inline { .. } => false,
+        other => {
+            let mut found = false;
+            other.for_each_block(|b| found |= returns(b));
+            found
+        }
+    })
 }
 
 /// The locals `block` stores into anywhere: whole, through an index, or as a built-in's output.

@@ -246,6 +246,10 @@ pub fn trigonometry_and_exponentials() -> Vec<Case> {
         c1("$o = atan($0, $1);", &[(F, R4), (F, R4)], F, tol::ATAN),
         c1("$o = pow($0, $1);", &[(F, range(0.5, 4.0)), (F, R4)], F, tol::POW),
         c1("$o = pow($0, $1);", &[("color", range(0.5, 4.0)), ("color", R4)], "color", tol::POW),
+        // A negative base with an integral exponent is ±|x|^y, as C's powf has it (issue 24: WGSL
+        // leaves it undefined, NaN on Vulkan).
+        c1("$o = pow($0, floor($1));", &[(F, range(-4.0, -0.5)), (F, R4)], F, tol::POW),
+        c1("$o = pow($0, floor($1));", &[("color", range(-4.0, -0.5)), ("color", R4)], "color", tol::POW),
         c1("$o = exp($0);", &[(F, range(-10.0, 10.0))], F, tol::EXP),
         c1("$o = exp($0);", &[("float3", range(-10.0, 10.0))], "float3", tol::EXP),
         c1("$o = log($0);", &[(F, range(1e-3, 1e3))], F, tol::LOG),

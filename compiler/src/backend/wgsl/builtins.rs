@@ -74,7 +74,7 @@ impl Translator<'_> {
             "atan" => self.math2(M::Atan2, v(0), v(1)),
             "pow" => {
                 let y = wide(self, 1);
-                self.math2(M::Pow, v(0), y)
+                self.pow(v(0), y, n)
             }
             "exp" => self.math1(M::Exp, v(0)),
             "sqrt" => self.math1(M::Sqrt, v(0)),
@@ -444,6 +444,27 @@ impl Translator<'_> {
         let d = self.math2(M::Max, zero, d);
         let e = self.binary(Op::Divide, one, roughness);
         self.math2(M::Pow, d, e)
+    }
+
+    /// `pow(x, y)` with the interpreter's (C's `powf`) result for a negative base and an integral
+    /// exponent, ±|x|^y by the exponent's parity, where WGSL leaves `pow` of a negative base
+    /// undefined (NaN on Vulkan drivers); other cases are WGSL's `pow`. `n` is the width.
+    fn pow(&mut self, x: Value, y: Value, n: u32) -> Value {
+        let direct = self.math2(M::Pow, x, y);
+        let ax = self.math1(M::Abs, x);
+        let magnitude = self.math2(M::Pow, ax, y);
+        let (zero, half) = (self.float(0.0), self.float(0.5));
+        let (zero, half) = (self.splat(zero, n), self.splat(half, n));
+        let negative = self.binary(Op::Less, x, zero);
+        let whole = self.math1(M::Trunc, y);
+        let integral = self.binary(Op::Equal, y, whole);
+        let halved = self.binary(Op::Multiply, y, half);
+        let halved_whole = self.math1(M::Trunc, halved);
+        let odd = self.binary(Op::NotEqual, halved, halved_whole);
+        let flipped = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: magnitude });
+        let signed = self.pick(odd, flipped, magnitude);
+        let take = self.binary(Op::And, negative, integral);
+        self.pick(take, signed, direct)
     }
 
     /// `lightsource(name, v)` inside `illuminance`, visiting light `self.light`: as the

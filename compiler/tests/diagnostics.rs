@@ -983,13 +983,11 @@ fn ray_tracing() {
 #[test]
 fn message_passing() {
     let (codes, text) = run(&lines(&[
-        "light spot(float intensity = 1)",
+        "surface bumped(float Kd = 1)",
         "{",
-        "    float Kd = 1;",
-        "    surface(\"Kd\", Kd);",
-        "    illuminate(P) {",
-        "        Cl = intensity * Kd;",
-        "    }",
+        "    float amplitude = 0;",
+        "    displacement(\"Km\", amplitude);",
+        "    Ci = Kd * amplitude;",
         "}",
     ]));
     assert_eq!(codes, ["E0402"]);
@@ -1037,6 +1035,35 @@ fn lightsource_outside_illuminance_or_with_a_computed_name() {
     ]));
     assert_eq!(codes, ["E0402"], "{text}");
     assert!(text.contains("illuminance(\"category\", ...)"), "{text}");
+}
+
+#[test]
+fn surface_only_in_lights_and_volumes() {
+    let (codes, text) = run(&lines(&[
+        "surface s(float Kd = 1)",
+        "{",
+        "    float kd = 0;",
+        "    surface(\"Kd\", kd);",
+        "    Ci = kd;",
+        "}",
+    ]));
+    assert_eq!(codes, ["E0511"], "{text}");
+    assert!(text.contains("`surface` can only be called in light or volume shaders"), "{text}");
+    let (codes, text) = run(&lines(&[
+        "light l(float intensity = 1)",
+        "{",
+        "    float kd = 1;",
+        "    if (surface(\"Kd\", kd) == 1) { kd *= 2; }",
+        "    illuminate(P) { Cl = intensity * kd; }",
+        "}",
+        "volume v()",
+        "{",
+        "    color glow = 0;",
+        "    surface(\"glow\", glow);",
+        "    Ci += glow;",
+        "}",
+    ]));
+    assert!(codes.is_empty(), "{text}");
 }
 
 #[test]

@@ -377,3 +377,100 @@ fn a_string_parameter_passed_on_as_a_space_name_renders_on_both_backends() {
     let (lo, hi) = covered.iter().fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
     assert!(covered.len() > 50 && hi - lo > 0.2, "{} pixels, {lo} to {hi}", covered.len());
 }
+
+/// A light and an atmosphere that read the surface they are bound with (`surface("name", v)`).
+const SURFACE_MESSAGES: &str = r#"
+light reader(float intensity = 1; point from = point(0, 3, -3)) {
+    illuminate(from) {
+        float kd = 1;
+        color tint = 1;
+        surface("Kd", kd);
+        // `plain` has a float `tint`: not the colour asked for, so tint stays 1.
+        float has = surface("tint", tint);
+        Cl = intensity * kd * tint / (L . L) * (has + 1) * 0.5;
+    }
+}
+
+volume glowing(float amount = 1) {
+    float glow = 0;
+    surface("glow", glow);
+    Ci += amount * glow * color(0, 0.5, 0);
+}
+
+surface lit(float Kd = 0.5; color tint = color(1, 0.5, 0.25); output varying float glow = 0) {
+    normal Nf = normalize(N);
+    color c = 0;
+    illuminance(P, Nf, PI / 2) { c += Cl * max(0, normalize(L) . Nf); }
+    glow = s;
+    Ci = c;
+}
+
+surface plain(float Kd = 0.5; float tint = 1) {
+    normal Nf = normalize(N);
+    color c = 0;
+    illuminance(P, Nf, PI / 2) { c += Cl * max(0, normalize(L) . Nf); }
+    Ci = c * tint;
+}
+"#;
+
+#[test]
+fn lights_and_atmospheres_read_their_surface_by_message_passing_on_both_backends() {
+    let scene = |surface: &str, params: &str, atmosphere: bool| {
+        let atmosphere = if atmosphere {
+            "atmosphere = { shader = \"surface_messages.sl\", name = \"glowing\" }\n"
+        } else {
+            ""
+        };
+        format!(
+            "[output]\nwidth = 40\nheight = 40\n[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\nfov = 40\n\
+             [[light]]\nshader = \"surface_messages.sl\"\nname = \"reader\"\nparams = {{ intensity = 20.0 }}\n\
+             [[object]]\nmesh = \"sphere\"\ndetail = 32\nshader = \"surface_messages.sl\"\nname = \"{surface}\"\n\
+             params = {{ {params} }}\n{atmosphere}"
+        )
+    };
+    let gpu = patina_runtime::gpu::for_tests();
+    let render = |label: &str, surface: &str, params: &str, atmosphere: bool| -> Image {
+        let s = written_scene("surface_messages", SURFACE_MESSAGES, &scene(surface, params, atmosphere));
+        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{label}: {e}"));
+        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
+        if let Some(gpu) = &gpu {
+            let image =
+                render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
+            let t = Thresholds::default();
+            let c = compare(&cpu, &image, &t).unwrap();
+            assert!(c.passes(&t), "{label}: GPU and CPU images differ: {c:?}");
+        }
+        cpu
+    };
+    let half = render("Kd 0.5", "lit", "Kd = 0.5", false);
+    let full = render("Kd 1", "lit", "Kd = 1.0", false);
+    let plain = render("a float tint", "plain", "Kd = 1.0", false);
+    let lit: Vec<usize> = (0..half.pixels.len()).filter(|&i| full.pixels[i][0] > 0.02).collect();
+    assert!(lit.len() > 100, "{} lit pixels", lit.len());
+    for &i in &lit {
+        let (h, f, p) = (half.pixels[i], full.pixels[i], plain.pixels[i]);
+        // The light scales by the surface's Kd, a power of two apart: exactly.
+        assert_eq!(f[0], 2.0 * h[0], "pixel {i}");
+        // `lit`'s colour tint reaches the light; `plain`'s float one does not (has = 0: half).
+        assert!(
+            (f[1] - 0.5 * f[0]).abs() <= 1e-6 * f[0] && (f[2] - 0.25 * f[0]).abs() <= 1e-6 * f[0],
+            "{f:?}"
+        );
+        assert!(p[0] == p[1] && p[1] == p[2] && (p[0] - 0.5 * f[0]).abs() <= 1e-6 * f[0], "{p:?} {f:?}");
+    }
+    // The atmosphere reads the surface's output `glow` (s) as the body left it: green rises by
+    // s / 2 where the sphere is, and the other channels stay.
+    let glowing = render("an atmosphere reading glow", "lit", "Kd = 1.0", true);
+    let mut rises = Vec::new();
+    for (g, f) in glowing.pixels.iter().zip(&full.pixels) {
+        if f[3] > 0.0 {
+            assert_eq!((g[0], g[2]), (f[0], f[2]));
+            rises.push(g[1] - f[1]);
+        }
+    }
+    let (lo, hi) = rises.iter().fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
+    assert!(lo >= -1e-6 && hi > 0.3 && hi <= 0.5 + 1e-6, "green rises from {lo} to {hi}");
+    // Over `plain`, which has no `glow`, the atmosphere adds nothing.
+    let over_plain = render("an atmosphere over plain", "plain", "Kd = 1.0", true);
+    assert_eq!(over_plain.pixels, plain.pixels);
+}

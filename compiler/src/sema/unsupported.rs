@@ -12,14 +12,15 @@ use crate::syntax::ast::Ident;
 pub fn call(callee: &Ident) -> Option<Diagnostic> {
     const RAY_TRACING: &str = "a rasterizer has no rays to trace; these need a ray tracer";
     const MESSAGES: &str = "shaders are bound together, so binding answers the queries it can (`lightsource` inside \
-         `illuminance`, a light's `__category`); there is no other shader to query at run time";
+         `illuminance`, `surface` in lights and atmospheres, a light's `__category`); there is no other \
+         shader to query at run time";
     let (code, feature, why) = match callee.name.as_str() {
         "trace" | "transmission" | "occlusion" | "indirectdiffuse" | "rayinfo" | "photonmap" | "caustic" => {
             (Code::RayTracing, "ray tracing", RAY_TRACING)
         }
-        "surface" | "displacement" | "light" | "volume" | "imager" | "atmosphere" | "incident"
-        | "opposite" | "interior" | "exterior" => {
-            (Code::MessagePassing, "message passing between shaders", MESSAGES)
+        "displacement" | "light" | "volume" | "imager" | "atmosphere" | "incident" | "opposite"
+        | "interior" | "exterior" => {
+            (Code::MessagePassing, "message passing beyond `lightsource` and `surface`", MESSAGES)
         }
         "attribute" | "rendererinfo" | "textureinfo" => (
             Code::RendererQuery,

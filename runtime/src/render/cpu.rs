@@ -4,7 +4,9 @@
 //! the seeds.
 
 use glam::Vec3;
-use patina_compiler::backend::cpu::{CpuProgram, Evaluator, POINT_INDEX, lightsource_input};
+use patina_compiler::backend::cpu::{
+    CpuProgram, Evaluator, POINT_INDEX, lightsource_input, surface_flag_input, surface_input,
+};
 use patina_compiler::backend::wgsl::interface::Output;
 use patina_compiler::split::StageKind;
 
@@ -196,6 +198,7 @@ fn fragment_stage(
             for (name, value) in &l.values {
                 let _ = e.set(name, value);
             }
+            set_surface_flags(&mut e, &l.cpu, surface);
             e
         })
         .collect();
@@ -350,12 +353,25 @@ fn shade_batch(
     let e = get(&columns, "E");
     for (k, light) in lights.iter_mut().enumerate() {
         let lp = &prepared.lights[k].cpu;
+        // The surface's parameters the light reads with `surface`: as the fragment stage reads
+        // them (a varying column, or the uniform value).
+        let messages: Vec<(String, Vec<f64>)> = surface_messages(lp, surface)
+            .into_iter()
+            .map(|(name, width, has)| {
+                let column = match get(&columns, &name) {
+                    Some(c) if has => c,
+                    _ => uniform_column(surface, &name, width, n),
+                };
+                (surface_input(&name), column)
+            })
+            .collect();
         let inputs: Vec<(&str, &[f64])> = [("Ps", &p3), ("P", &p3), ("N", &nn)]
             .into_iter()
+            .map(|(name, v)| (name, v.as_slice()))
+            .chain(messages.iter().map(|(name, c)| (name.as_str(), c.as_slice())))
             .filter(|(name, _)| {
                 lp.slot(name).is_some_and(|id| lp.slots().any(|(i, s)| i == id && !s.uniform))
             })
-            .map(|(name, v)| (name, v.as_slice()))
             .collect();
         // A light that never sets `L` (an ambient light without `solar` or `illuminate`) leaves
         // it zero, as on the GPU.
@@ -432,8 +448,23 @@ fn shade_batch(
         Output::CiOi => vec!["Ci", "Oi"],
         _ => vec!["Ci"],
     };
+    // An atmosphere reads the surface's parameters with `surface` as the surface's body left them.
+    let atmosphere_messages = match &surface.atmosphere {
+        Some(a) => surface_messages(&a.cpu, surface),
+        None => Vec::new(),
+    };
+    let shown = wanted.len();
+    let mut wanted = wanted;
+    wanted.extend(
+        atmosphere_messages
+            .iter()
+            .filter(|(name, _, has)| *has && program.slot(name).is_some())
+            .map(|(name, ..)| name.as_str()),
+    );
     let mut outs =
         fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
+    let left: Vec<(String, Vec<f64>)> =
+        wanted[shown..].iter().map(|name| surface_input(name)).zip(outs.split_off(shown)).collect();
     // The atmosphere, between the surface and the eye: on the surface's Ci and Oi (opaque when
     // the surface writes none), its own Ci and Oi are the fragment's.
     if let Some(a) = &surface.atmosphere {
@@ -445,6 +476,13 @@ fn shade_batch(
         for (name, value) in &a.values {
             let _ = e.set(name, value);
         }
+        set_surface_flags(&mut e, &a.cpu, surface);
+        let mut messages: Vec<(String, Vec<f64>)> = atmosphere_messages
+            .iter()
+            .filter(|(name, ..)| !left.iter().any(|(input, _)| *input == surface_input(name)))
+            .map(|(name, width, _)| (surface_input(name), uniform_column(surface, name, *width, n)))
+            .collect();
+        messages.extend(left);
         let varying =
             |name: &str| a.cpu.slot(name).is_some_and(|id| a.cpu.slots().any(|(i, s)| i == id && !s.uniform));
         let mut inputs: Vec<(&str, &[f64])> = columns
@@ -457,6 +495,9 @@ fn shade_batch(
                 inputs.push((name, c.as_slice()));
             }
         }
+        inputs.extend(
+            messages.iter().filter(|(name, _)| varying(name)).map(|(name, c)| (name.as_str(), c.as_slice())),
+        );
         let names: Vec<&str> = ["Ci", "Oi"].into_iter().filter(|name| a.cpu.slot(name).is_some()).collect();
         let results = e.eval_points(n, &inputs, &names).map_err(|e| RenderError::Compile(e.to_string()))?;
         let result = |name: &str| names.iter().position(|x| *x == name).map(|k| results[k].clone());
@@ -493,6 +534,39 @@ fn object_colour(frame: &Frame, name: &str) -> Option<Vec<f64>> {
         _ => return None,
     };
     Some(c.iter().map(|x| f64::from(*x)).collect())
+}
+
+/// The surface parameters `reader` (a light's or an atmosphere's program) reads with
+/// `surface("name", v)`: each name, the width of the value it reads, and whether the object's
+/// surface has a parameter of that name and type (the GPU module decides the same when it is
+/// compiled).
+fn surface_messages(reader: &CpuProgram, surface: &SurfaceProgram) -> Vec<(String, usize, bool)> {
+    let shader = &surface.loaded.shader;
+    reader
+        .slots()
+        .filter_map(|(_, s)| {
+            let name = s.name.strip_prefix("surface(")?.strip_suffix(')')?;
+            let has = shader.params.iter().map(|p| shader.local(*p)).any(|l| l.name == name && l.ty == s.ty);
+            Some((name.to_string(), s.width, has))
+        })
+        .collect()
+}
+
+/// Tells `reader` which of the surface parameters it reads with `surface` the object's surface has.
+fn set_surface_flags(eval: &mut Evaluator<f32>, reader: &CpuProgram, surface: &SurfaceProgram) {
+    for (name, _, has) in surface_messages(reader, surface) {
+        // Only names the program reads are set, so this cannot fail.
+        let _ = eval.set(&surface_flag_input(&name), &[f64::from(u8::from(has))]);
+    }
+}
+
+/// A surface parameter's per-draw value (what the host computed, as the GPU's uniform block
+/// holds it) for each of `n` points; zeros where the surface has none.
+fn uniform_column(surface: &SurfaceProgram, name: &str, width: usize, n: usize) -> Vec<f64> {
+    match surface.uniforms.iter().find(|(u, _)| u == name) {
+        Some((_, v)) if v.len() == width => (0..n).flat_map(|_| v.iter().copied()).collect(),
+        _ => vec![0.0; n * width],
+    }
 }
 
 /// Gives a stage program the object's textures it reads.

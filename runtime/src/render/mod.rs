@@ -197,13 +197,21 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
                 &frame,
             )?,
             None => {
-                let loaded = program::load(&o.surface, ShaderKind::Surface, world_to_camera, specialize)?;
-                let displacement = match &o.displacement {
-                    Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera, specialize)?),
-                    None => None,
-                };
                 let atmosphere = match &o.atmosphere {
                     Some(a) => Some(program::load(a, ShaderKind::Volume, world_to_camera, specialize)?),
+                    None => None,
+                };
+                // What the atmosphere reads of the surface is kept by the surface's binding.
+                let read = atmosphere.as_ref().map(|a| program::surface_reads(&a.shader)).unwrap_or_default();
+                let loaded = program::load_reading(
+                    &o.surface,
+                    ShaderKind::Surface,
+                    world_to_camera,
+                    specialize,
+                    &read,
+                )?;
+                let displacement = match &o.displacement {
+                    Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera, specialize)?),
                     None => None,
                 };
                 let surface = program::shaded_program(loaded, displacement, atmosphere, &lights, &frame)?;

@@ -11,8 +11,8 @@ use patina_compiler::source::SourceMap;
 use glam::{Mat4, Vec3, Vec4};
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, SlotKind};
 use patina_compiler::backend::wgsl::{self, BoundLight, GpuProgram};
-use patina_compiler::ir::Shader;
 use patina_compiler::ir::types::{Base, Type};
+use patina_compiler::ir::{ExprKind, Literal, Shader};
 use patina_compiler::split::{self, Stages};
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
@@ -140,6 +140,19 @@ pub fn load(
     world_to_camera: Mat4,
     specialize: bool,
 ) -> Result<LoadedShader, RenderError> {
+    load_reading(shader, kind, world_to_camera, specialize, &[])
+}
+
+/// As [`load`], for a shader whose output parameters `read` are read by another shader bound
+/// with it (an atmosphere's `surface("name", v)`): binding keeps the code that computes them.
+/// A light keeps all of its output parameters, which surfaces read with `lightsource`.
+pub fn load_reading(
+    shader: &ShaderRef,
+    kind: ShaderKind,
+    world_to_camera: Mat4,
+    specialize: bool,
+    read: &[String],
+) -> Result<LoadedShader, RenderError> {
     let path = shader.path.as_path();
     let shown = path.display().to_string();
     let module = shown.strip_prefix(patina_compiler::stdlib::PREFIX).and_then(|m| m.strip_prefix('/'));
@@ -192,8 +205,10 @@ pub fn load(
             .map(|(name, value)| Fixed { name: name.clone(), value: value.clone() })
             .collect();
         // The renderer reads back Ci, Oi or the result, never an output parameter; but a
-        // surface may read a light's output parameters with `lightsource`.
-        let consumed = if kind == ShaderKind::Light { Consumed::All } else { Consumed::Only(&[]) };
+        // surface may read a light's output parameters with `lightsource`, and an atmosphere a
+        // surface's with `surface`.
+        let read: Vec<&str> = read.iter().map(String::as_str).collect();
+        let consumed = if kind == ShaderKind::Light { Consumed::All } else { Consumed::Only(&read) };
         let bound = patina_compiler::bind::specialize(shader_ir, &fixed, &strings, consumed);
         (bound.shader, bound.decisions)
     } else {
@@ -207,6 +222,25 @@ pub fn load(
         decisions,
         sources: Arc::new(checked.sources.clone()),
     })
+}
+
+/// The names a shader reads from the surface it is bound with: the literal first arguments of
+/// its `surface("name", v)` calls.
+pub fn surface_reads(shader: &Shader) -> Vec<String> {
+    let mut names: Vec<String> = shader
+        .exprs
+        .iter()
+        .filter_map(|e| match &e.kind {
+            ExprKind::Builtin(b, args) if b.name == "surface" => match &shader.expr(*args.first()?).kind {
+                ExprKind::Literal(Literal::String(s)) => Some(s.to_string()),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect();
+    names.sort();
+    names.dedup();
+    names
 }
 
 /// Whether a parameter's scene value is transformed into camera space ([`to_current`]), so that

@@ -251,6 +251,7 @@ impl Translator<'_> {
             "specular" => self.light_sum(LightTerm::Specular, &vals)?,
             "phong" => self.light_sum(LightTerm::Phong, &vals)?,
             "lightsource" => self.lightsource(args, span)?,
+            "surface" => self.surface_message(args, span)?,
             "specularbrdf" => {
                 let l = self.normalize(v(0));
                 let brdf = self.specular_brdf(l, v(1), v(2), v(3));
@@ -496,6 +497,35 @@ impl Translator<'_> {
         } else {
             let source = super::interface::UniformSource::LightParam { light: k, name: name.to_string() };
             super::entry::uniform_input(self, &format!("{prefix}{name}"), ty, source)
+        };
+        self.write_output(args[1], value);
+        Ok(self.float(1.0))
+    }
+
+    /// `surface(name, v)` in a light's or an atmosphere's function: the surface's parameter
+    /// `name` when it has one of `v`'s type (1), else 0 and `v` unchanged, as the interpreter has
+    /// it with the runtime's inputs (`backend/cpu/lower/builtins.rs`). The surface's variable
+    /// where its fragment stage reads the parameter (set at the top of the entry point, before
+    /// the lights; after the body for an atmosphere), else its uniform.
+    fn surface_message(&mut self, args: &[ExprId], span: crate::source::Span) -> Result<Value, Diagnostic> {
+        let ty = self.shader.expr(args[1]).ty;
+        let Some(name) = self.string_value(args[0]) else { return Ok(self.float(0.0)) };
+        let Some(surface) = self.surface else {
+            return Err(self.error(span, "`surface` needs the surface's shader in the same module"));
+        };
+        let param = surface.params.iter().copied().find(|p| {
+            let local = surface.local(*p);
+            local.name == name && local.ty == ty
+        });
+        let Some(param) = param else { return Ok(self.float(0.0)) };
+        let value = if super::uses::Uses::of(surface, &surface.body).locals.contains(&param) {
+            let names = super::body::variable_names(surface, "");
+            let var = self.mb.private(&names[&param], ty);
+            let p = self.pointer(var);
+            self.load(p)
+        } else {
+            let source = super::interface::UniformSource::Param { name: name.to_string() };
+            super::entry::uniform_input(self, &name, ty, source)
         };
         self.write_output(args[1], value);
         Ok(self.float(1.0))

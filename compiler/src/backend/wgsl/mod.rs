@@ -152,6 +152,7 @@ pub fn compile_shaded(
         let mut t =
             Translator::new(&mut mb, light.shader, &prefix, &[], &light.strings, &format!("light{k}"));
         t.owner = Some(k);
+        t.surface = Some(&stages.fragment);
         t.block(&light.shader.body)?;
         let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
         drop(t);
@@ -186,6 +187,7 @@ pub fn compile_shaded(
                 ));
             }
             let mut t = Translator::new(&mut mb, a.shader, "a_", &[], &a.strings, "atmosphere");
+            t.surface = Some(&stages.fragment);
             t.block(&a.shader.body)?;
             let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
             drop(t);

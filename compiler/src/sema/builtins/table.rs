@@ -13,8 +13,9 @@
 //!   positional arguments (`builtins::honoured_options` says which have an effect). `filterstep`
 //!   takes none.
 //! - `option` (answered in `sema/lower/call.rs`) and `bake` (a no-op there) are not in the lines.
-//! - `trace`, `textureinfo`, message passing other than `lightsource` (`surface`, `incident`, ...)
-//!   and renderer queries (`attribute`, `rendererinfo`): rejected by name in sema/unsupported.rs.
+//! - `trace`, `textureinfo`, message passing other than `lightsource` and `surface` (`incident`,
+//!   `displacement`, ...) and renderer queries (`attribute`, `rendererinfo`): rejected by name in
+//!   sema/unsupported.rs.
 //! - PRMan's resizable-array functions (`arraylength`, `resize`, `push`, ...): not in RI 3.2, and
 //!   Patina's arrays have a fixed size.
 
@@ -190,6 +191,10 @@ pub const SIGNATURES: &[&str] = &[
     // the parameter of that name of the light being visited, written to the output with 1
     // returned when the light has one of the output's type, 0 and nothing written otherwise.
     "for T in float|color|point|vector|normal: float lightsource(string, output T) [fragment]",
+    // In a light or an atmosphere (volume) shader: the parameter of that name of the surface it
+    // is bound with, written to the output with 1 returned when the surface has one of the
+    // output's type, 0 and nothing written otherwise.
+    "for T in float|color|point|vector|normal: float surface(string, output T) [fragment]",
     // ---------------------------------------------------------------------------------------------
     // RenderMan 15.7: texture mapping. The result type chooses between a channel and a colour;
     // the implicit filter region comes from screen derivatives.

@@ -188,19 +188,22 @@ impl Lowerer<'_> {
         }
         let lowered: Vec<ExprId> = lowered.into_iter().collect::<Option<_>>()?;
         let types: Vec<Type> = lowered.iter().map(|&a| self.ty(a)).collect();
-        if builtin_call
-            && callee.name == "lightsource"
-            && types.get(1).is_some_and(|t| t.base == Base::String)
-        {
+        let message = matches!(callee.name.as_str(), "lightsource" | "surface");
+        if builtin_call && message && types.get(1).is_some_and(|t| t.base == Base::String) {
+            let help = if callee.name == "lightsource" {
+                "select lights by category with `illuminance(\"category\", ...)`: a light's `__category` parameter names its categories"
+            } else {
+                "pass the string to this shader as a parameter of its own"
+            };
             self.error(
                 Diagnostic::error(
                     Code::MessagePassing,
-                    "`lightsource` cannot read a string parameter",
+                    format!("`{}` cannot read a string parameter", callee.name),
                     args[1].span,
                     "a string variable",
                 )
-                .with_note("strings are compile-time values, and this one would differ from light to light")
-                .with_help("select lights by category with `illuminance(\"category\", ...)`: a light's `__category` parameter names its categories"),
+                .with_note("strings are compile-time values, and this one would differ from shader to shader")
+                .with_help(help),
             );
             return None;
         }
@@ -238,10 +241,17 @@ impl Lowerer<'_> {
                     );
                     return None;
                 }
-                if b.name == "lightsource" && !matches!(args[0].kind, ast::ExprKind::String(_)) {
+                if b.name == "surface"
+                    && !matches!(self.kind, ast::ShaderKind::Light | ast::ShaderKind::Volume)
+                {
+                    return self.wrong_kind(callee, "light or volume");
+                }
+                if matches!(b.name, "lightsource" | "surface")
+                    && !matches!(args[0].kind, ast::ExprKind::String(_))
+                {
                     self.error(Diagnostic::error(
                         Code::TypeMismatch,
-                        "`lightsource` needs the parameter's name as a string literal",
+                        format!("`{}` needs the parameter's name as a string literal", b.name),
                         args[0].span,
                         "not a string literal",
                     ));

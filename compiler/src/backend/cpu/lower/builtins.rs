@@ -15,6 +15,18 @@ pub fn lightsource_input(name: &str, k: usize) -> String {
     format!("lightsource({name})[{k}]")
 }
 
+/// The name of the input that gives `surface(name, ...)` the bound surface's parameter `name` at
+/// each point (the caller gives it per object).
+pub fn surface_input(name: &str) -> String {
+    format!("surface({name})")
+}
+
+/// The name of the uniform input that says whether the bound surface has a parameter `name` of
+/// the type `surface(name, v)` asks for: 1 or 0.
+pub fn surface_flag_input(name: &str) -> String {
+    format!("surface?({name})")
+}
+
 impl Lower<'_> {
     /// A call of a built-in.
     pub(super) fn builtin(
@@ -193,6 +205,7 @@ impl Lower<'_> {
             "specular" => self.light_sum(LightTerm::Specular, &vals),
             "phong" => self.light_sum(LightTerm::Phong, &vals),
             "lightsource" => self.lightsource(&vals[0], args[1], span)?,
+            "surface" => self.surface_message(&vals[0], &vals[1], args[1], span)?,
             "specularbrdf" => {
                 let l = self.normalize(f(0));
                 let brdf = self.specular_brdf(&l, f(1), f(2), f(3)[0]);
@@ -299,6 +312,28 @@ impl Lower<'_> {
         let regs = self.named_input(&lightsource_input(&name, k), ty, false);
         self.write_output(out, &Val::Float(regs), span)?;
         Ok(Val::Float(vec![self.emit.float(1.0)]))
+    }
+
+    /// `surface(name, v)` in a light or an atmosphere: the bound surface's parameter `name`,
+    /// which the caller gives per object, as [`surface_input`] (its value at each point) and
+    /// [`surface_flag_input`] (1 when the surface has one of `v`'s type; 0 leaves `v` as it is).
+    fn surface_message(
+        &mut self,
+        name: &Val,
+        current: &Val,
+        out: ExprId,
+        span: crate::source::Span,
+    ) -> Result<Val, Diagnostic> {
+        let Val::Str(name) = name else { return Ok(Val::Float(vec![self.emit.float(0.0)])) };
+        let ty = self.shader.expr(out).ty;
+        let flag = self.named_input(&surface_flag_input(name), Type::FLOAT, true)[0];
+        let value = self.named_input(&surface_input(name), ty, false);
+        let zero = self.emit.float(0.0);
+        let has = self.emit.compare(Compare::Ne, flag, zero);
+        let chosen: Vec<Reg> =
+            value.iter().zip(current.floats()).map(|(v, c)| self.emit.select(true, has, *v, *c)).collect();
+        self.write_output(out, &Val::Float(chosen), span)?;
+        Ok(Val::Float(vec![flag]))
     }
 
     /// Stores into the local passed as an `output` argument.

@@ -6,7 +6,7 @@
 //! built-ins of its own; it reads [`ExprKind::Seed`] registers the caller fills).
 
 mod builtins;
-pub use builtins::lightsource_input;
+pub use builtins::{lightsource_input, surface_flag_input, surface_input};
 mod colour;
 mod curves;
 mod emit;

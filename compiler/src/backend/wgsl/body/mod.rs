@@ -56,6 +56,9 @@ pub(crate) struct Translator<'a> {
     /// Their shaders, where their functions are in the same module (a surface's body: what
     /// `lightsource` reads); empty otherwise.
     pub light_shaders: Vec<&'a Shader>,
+    /// The surface's fragment stage, in a light's or an atmosphere's function of the same
+    /// module (what `surface` reads); `None` otherwise.
+    pub surface: Option<&'a Shader>,
     /// Values of string parameters.
     pub strings: &'a [(String, String)],
     pub fb: FnBuilder,
@@ -94,6 +97,7 @@ impl<'a> Translator<'a> {
             prefix: prefix.to_string(),
             lights,
             light_shaders: Vec::new(),
+            surface: None,
             strings,
             fb: FnBuilder::new(function),
             light: None,

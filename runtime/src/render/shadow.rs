@@ -3,9 +3,9 @@
 //! against identical depths.
 //!
 //! The map of a `[[shadow]]` table is seen by a pinhole camera at the light's `from` looking at
-//! its `to` (world space, from the light's `params`), with the table's `fov` or else twice the
-//! light's `coneangle` (radians, default 30°) plus 10°, square, `near` and `far` from the
-//! table. Every object's mesh is drawn undisplaced (a displacement shader does not move the
+//! its `to` (world space, from the light's `params`; the table's own `to` instead, for the faces
+//! of a point light's cube), with the table's `fov` or else twice the light's `coneangle`
+//! (radians, default 30°) plus 10°, square, `near` and `far` from the table. Every object's mesh is drawn undisplaced (a displacement shader does not move the
 //! shadows it casts) with its transform; each texel holds the light-camera-space z of the nearest
 //! surface through its centre, or 10³⁰ where there is none. The texture is `resolution` ×
 //! (`resolution` + 1) texels: the last row's first four texels are the rows of the matrix from
@@ -40,10 +40,14 @@ pub fn light_camera(scene: &Scene, map: &ShadowMap) -> Result<Camera, RenderErro
             map.name, map.light
         ))),
     };
-    let (from, to) = (point("from")?, point("to")?);
+    let from = point("from")?;
+    let to = match map.to {
+        Some(to) => Vec3::from(to),
+        None => point("to")?,
+    };
     if (to - from).length() <= 0.0 {
         return Err(RenderError::Input(format!(
-            "shadow map `{}`: light {}'s `from` and `to` are the same point",
+            "shadow map `{}`: it looks from light {}'s `from` at the same point",
             map.name, map.light
         )));
     }

@@ -84,6 +84,9 @@
 //! far = 1000
 //! projection = "perspective"   # or "orthographic": parallel rays along from -> to, for distant
 //!                              # lights, over a window fitted to the meshes (default perspective)
+//! to = [1, 4, 0]               # optional: the world point the map looks at, instead of the
+//!                              # light's `to` (six maps with fov = 90 along the axes from a point
+//!                              # light's `from`: its cube, as `shadowpoint` reads it)
 //!
 //! [compare]                    # optional: how closely the GPU must match the CPU reference
 //! hard_fail = 0.5              # (fail, hard_fail, max_failing_fraction: default OSL's, see

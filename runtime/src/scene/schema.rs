@@ -162,4 +162,5 @@ pub(crate) struct RawShadowMap {
     pub far: Option<f32>,
     pub bias: Option<f32>,
     pub projection: Option<String>,
+    pub to: Option<[f32; 3]>,
 }

@@ -36,6 +36,10 @@ pub struct ShadowMap {
     /// Parallel projection (`projection = "orthographic"`, for distant lights) instead of
     /// perspective from the light's `from`.
     pub orthographic: bool,
+    /// The world point the map looks at instead of the light's `to`: six maps with `fov = 90`
+    /// looking along the axes from a point light's `from` make its cube of maps (as Aqsis's
+    /// `shadowpoint` reads them, one per direction of L).
+    pub to: Option<[f32; 3]>,
 }
 
 /// The `[[shadow]]` tables, checked against the lights.
@@ -62,12 +66,19 @@ pub(super) fn shadow_maps(
                 return Err(loc.invalid(&at.key("light"), message));
             }
         };
-        for p in ["from", "to"] {
+        if let Some(to) = r.to
+            && !to.iter().all(|x| x.is_finite())
+        {
+            return Err(loc.invalid(&at.key("to"), "`to` must be three finite numbers (world space)"));
+        }
+        let needed: &[&str] = if r.to.is_some() { &["from"] } else { &["from", "to"] };
+        for &p in needed {
             match lights[light].shader.params.get(p) {
                 Some(ParamValue::Numbers(v)) if v.len() == 3 && v.iter().all(|x| x.is_finite()) => {}
                 _ => {
                     let message = format!(
-                        "light {light} must set `{p}` (three numbers, world space) to cast a shadow map"
+                        "light {light} must set `{p}` (three numbers, world space) to cast a shadow map{}",
+                        if p == "to" { ", or the map its own `to`" } else { "" }
                     );
                     return Err(loc.invalid(&at.key("light"), message));
                 }
@@ -114,6 +125,7 @@ pub(super) fn shadow_maps(
             far,
             bias,
             orthographic,
+            to: r.to,
         });
     }
     Ok(maps)
@@ -158,6 +170,23 @@ mod tests {
             format!("{HEAD}[[shadow]]\nname = \"a\"\nlight = 0\n\n[[shadow]]\nname = \"a\"\nlight = 0\n");
         let e = Scene::parse(&twice, "s.toml", ".").unwrap_err().to_string();
         assert!(e.contains("a second shadow map named `a`"), "{e}");
+    }
+
+    #[test]
+    fn a_map_may_look_where_it_says_for_a_light_without_a_target() {
+        let point = "[camera]\nfrom = [0, 1, -5]\nto = [0, 0, 0]\n\n[[light]]\nshader = \"l.sl\"\nparams = { from = [0, 4, 0] }\n\n";
+        let with = |shadow: &str| {
+            Scene::parse(&format!("{point}[[shadow]]\nname = \"f\"\nlight = 0\n{shadow}\n"), "s.toml", ".")
+                .map_err(|e| e.to_string())
+        };
+        let scene = with("to = [1, 4, 0]\nfov = 90").unwrap();
+        assert_eq!(scene.shadow_maps[0].to, Some([1.0, 4.0, 0.0]));
+        let e = with("fov = 90").unwrap_err();
+        assert!(e.contains("must set `to`") && e.contains("or the map its own `to`"), "{e}");
+        let e = with("to = [1, 2]").unwrap_err();
+        assert!(e.contains("shadow[0].to") && !e.contains('\n'), "{e}");
+        let e = with("to = [1, nan, 0]").unwrap_err();
+        assert!(e.contains("three finite numbers"), "{e}");
     }
 
     #[test]

@@ -317,3 +317,100 @@ fn orthographic_map_shadows_a_distant_light_along_parallel_rays() {
     println!("shadowed_teapot, distant: {blocked} pixels in full shadow, {clear} clear of it");
     assert!(blocked > 40 && clear > 1000, "{blocked} blocked, {clear} clear");
 }
+
+/// A point light casts shadows through a cube of six maps, each looking along one axis from the
+/// light (`[[shadow]]`'s own `to`), read by Aqsis's standard `shadowpoint` (from the corpus in
+/// ../shared, not copied), which picks the map by the direction of L in world space.
+#[test]
+fn a_point_light_casts_shadows_through_a_cube_of_six_maps() {
+    let corpus = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/corpus/aqsis/light/shadowpoint.sl");
+    assert!(corpus.is_file(), "{}: the corpus is missing (it lives in ../shared)", corpus.display());
+    let mut s = scene("shadowed_teapot", W, H);
+    let spot = s.lights[0].shader.clone();
+    let from = match &spot.params["from"] {
+        ParamValue::Numbers(v) => Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32),
+        other => panic!("from: {other:?}"),
+    };
+    s.lights[0].shader.path = corpus;
+    s.lights[0].shader.name = Some("shadowpoint".into());
+    s.lights[0].shader.params.retain(|k, _| ["from", "samples"].contains(&k.as_str()));
+    s.lights[0].shader.params.insert("intensity".into(), ParamValue::Number(45.0));
+    let template = s.shadow_maps[0].clone();
+    s.shadow_maps.clear();
+    let faces = [
+        ("px", Vec3::X),
+        ("nx", -Vec3::X),
+        ("py", Vec3::Y),
+        ("ny", -Vec3::Y),
+        ("pz", Vec3::Z),
+        ("nz", -Vec3::Z),
+    ];
+    for (face, axis) in faces {
+        let name = format!("point.{face}.shad");
+        s.lights[0].shader.params.insert(format!("sf{face}"), ParamValue::String(name.clone()));
+        let to = from + axis;
+        // A little wider than 90 degrees, so the taps of a lookup near a face's edge stay inside.
+        s.shadow_maps.push(patina_runtime::scene::ShadowMap {
+            name,
+            fov: Some(96.0),
+            to: Some(to.to_array()),
+            ..template.clone()
+        });
+    }
+    let image = match both("shadowed_teapot, point", &s, s.thresholds()) {
+        Some(r) => r.cpu,
+        None => cpu("shadowed_teapot, point", &s),
+    };
+    let mut dark = s.clone();
+    dark.lights[0].shader.params.insert("intensity".into(), ParamValue::Number(0.0));
+    let dark = cpu("shadowed_teapot, point off", &dark);
+    let mut unshadowed = s.clone();
+    for (face, _) in faces {
+        unshadowed.lights[0].shader.params.insert(format!("sf{face}"), ParamValue::String(String::new()));
+    }
+    let unshadowed = cpu("shadowed_teapot, point without maps", &unshadowed);
+    let teapot = Blocker::of(&s, 1);
+    let camera = s.camera().from;
+    let offsets = [Vec3::ZERO, Vec3::X * 0.08, -Vec3::X * 0.08, Vec3::Z * 0.08, -Vec3::Z * 0.08];
+    let (mut blocked, mut clear) = (0, 0);
+    let mut faces_lit = std::collections::BTreeSet::new();
+    for y in 0..H {
+        for x in 0..W {
+            let Some(q) = floor_point(&s, x, y) else { continue };
+            if q.x.abs() > 4.5 || q.z.abs() > 4.5 || teapot.blocks(camera, q, 0.0) {
+                continue;
+            }
+            let hits = offsets.iter().filter(|o| teapot.blocks(q + **o, from, 0.2)).count();
+            let (shaded, lit, off) = (at(&image, x, y), at(&unshadowed, x, y), at(&dark, x, y));
+            if hits == offsets.len() {
+                blocked += 1;
+                assert!(
+                    (0..3).all(|c| (shaded[c] - off[c]).abs() < 1e-5),
+                    "({x}, {y}): {shaded:?} vs {off:?}"
+                );
+            } else if hits == 0 && !offsets.iter().any(|o| teapot.blocks(q + *o * 2.0, from, 0.0)) {
+                clear += 1;
+                assert!(
+                    (0..3).all(|c| (shaded[c] - lit[c]).abs() < 1e-5),
+                    "({x}, {y}): {shaded:?} vs {lit:?}"
+                );
+                // Which face of the cube the lookup read: the major axis of the direction from the light.
+                let l = q - from;
+                let major = if l.x.abs() > l.y.abs() && l.x.abs() > l.z.abs() {
+                    0
+                } else if l.y.abs() > l.z.abs() {
+                    1
+                } else {
+                    2
+                };
+                faces_lit.insert(major);
+            }
+        }
+    }
+    println!(
+        "shadowed_teapot, point: {blocked} pixels in full shadow, {clear} clear of it, faces {faces_lit:?}"
+    );
+    assert!(blocked > 40 && clear > 1000, "{blocked} blocked, {clear} clear");
+    assert!(faces_lit.len() >= 2, "the floor is seen through more than one face: {faces_lit:?}");
+}

@@ -336,3 +336,21 @@ fn result_storage_classes_and_casts_of_negated_operands() {
     let codes: Vec<&str> = checked.diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(codes, ["E0519"], "{:?}", checked.diagnostics);
 }
+
+/// Issue 24: a function defined inside another (RSL since PRMan 3.8) is the outer function's own,
+/// defined afresh at each call: calling the outer function twice is neither a redefinition
+/// (E0508) nor an ambiguous call (E0504), and the inner function sees the outer's variables.
+#[test]
+fn nested_functions_are_defined_at_each_call() {
+    let src = "float outer(float x) {
+            float scale = 3;
+            float inner(float y) { return y * scale; }
+            return inner(x) + 1;
+        }
+        float twice(float x) { return outer(x) + outer(x * 2); }
+        surface t() { Ci = twice(s) + outer(t); }";
+    let out = run(src, 2, &[("s", &[1.0, 0.5]), ("t", &[2.0, 0.0])], &["Ci"]);
+    // outer(x) = 3x + 1, so Ci = (3s + 1) + (6s + 1) + (3t + 1).
+    let expected = |s: f64, t: f64| 9.0 * s + 3.0 * t + 3.0;
+    assert_eq!(out[0], [[expected(1.0, 2.0); 3], [expected(0.5, 0.0); 3]].concat());
+}

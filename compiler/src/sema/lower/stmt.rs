@@ -507,12 +507,15 @@ impl Lowerer<'_> {
             guarded_from: guarded,
         });
         let stmts = &f.body.stmts;
+        // Functions defined in the body are the callee's, defined afresh at each call.
+        let functions = self.local_functions.len();
         if self.enter_nested(call_span) {
             for s in stmts {
                 self.stmt(s, &mut body);
             }
             self.nesting -= 1;
         }
+        self.local_functions.truncate(functions);
         self.frames.pop();
         self.loops = saved_loops;
         self.no_effects = saved_no_effects;

@@ -16,7 +16,12 @@ fn main() -> ExitCode {
     match cli::run(args) {
         Ok(code) => code,
         Err(message) => {
-            eprintln!("error: {message}");
+            // A shader's rendered diagnostics name their own severity.
+            if message.starts_with("error[") {
+                eprintln!("{message}");
+            } else {
+                eprintln!("error: {message}");
+            }
             ExitCode::from(2)
         }
     }

@@ -96,6 +96,35 @@ fn include_directories_are_searched() {
 }
 
 #[test]
+fn render_searches_the_command_line_include_directories() {
+    let shader = scratch("uses_renderlib.sl", b"#include <renderlib.sl>\nsurface s() { Ci = tint(); }\n");
+    // The library is in a folder of its own, which only -I names.
+    let lib = shader.with_file_name("renderlib").join("renderlib.sl");
+    std::fs::create_dir_all(lib.parent().unwrap()).unwrap();
+    std::fs::write(&lib, b"color tint() { return color(1, 0.5, 0.25); }\n").unwrap();
+    let scene = scratch(
+        "includes.toml",
+        format!(
+            "[output]\nwidth = 8\nheight = 8\n[camera]\nfrom = [0, 0, -3]\nto = [0, 0, 0]\n\
+             [[object]]\nmesh = \"sphere\"\nshader = \"{}\"\n",
+            shader.display()
+        )
+        .as_bytes(),
+    );
+    let png = scene.with_file_name("includes.png");
+    let dir = lib.parent().unwrap().to_str().unwrap().to_string();
+    let args = ["render", scene.to_str().unwrap(), "-o", png.to_str().unwrap(), "--backend", "cpu"];
+    let out = patina(&args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "an angle include needs a search directory: {stderr}");
+    assert!(stderr.starts_with("error[E0202]: cannot find `renderlib.sl`"), "{stderr}");
+    let out = patina(&[&args[..], &["-I", &dir]].concat());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let (_, [r, g, b, _]) = png_pixel(&png, 4, 4);
+    assert!(r == 255 && g < r && b < g && b > 0, "the included colour: {:?}", [r, g, b]);
+}
+
+#[test]
 fn usage_errors_exit_non_zero() {
     let out = patina(&["check"]);
     assert!(!out.status.success());

@@ -219,6 +219,10 @@ pub struct RenderArgs {
     /// Compile every parameter dynamic (as uniforms) instead of binding the scene's values.
     #[arg(long)]
     dynamic: bool,
+    /// A directory to search for the shaders' `#include` files (after each shader's own folder
+    /// and the scene's `include` list; repeat for more).
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
 }
 
 /// Arguments of `patina eval`.

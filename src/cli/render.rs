@@ -12,7 +12,8 @@ use super::progress::{RenderBar, with_bars};
 use super::{BackendChoice, RenderArgs};
 
 pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
-    let scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
+    let mut scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
+    scene.add_include_dirs(&args.include);
     let started = Instant::now();
     let options = render::Options { specialize: !args.dynamic };
     let prepared = render::prepare_with(&scene, options).map_err(|e| e.to_string())?;

@@ -36,6 +36,10 @@ pub struct WatchArgs {
     /// interrupted.
     #[arg(long, value_name = "N")]
     max_renders: Option<NonZeroU32>,
+    /// A directory to search for the shaders' `#include` files (after each shader's own folder
+    /// and the scene's `include` list; repeat for more).
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
 }
 
 /// How long one wait for changes lasts before it is simply begun again: no limit is intended,
@@ -155,7 +159,8 @@ impl Session {
     /// Loads, prepares and renders the scene and writes the image; a summary line, or why not
     /// (rendered diagnostics for a shader's errors).
     fn render(&mut self) -> Result<String, String> {
-        let scene = Scene::load(&self.args.scene).map_err(|e| format!("error: {e}"))?;
+        let mut scene = Scene::load(&self.args.scene).map_err(|e| format!("error: {e}"))?;
+        scene.add_include_dirs(&self.args.include);
         self.inputs.scene = Some(scene.file.clone());
         self.inputs.shaders = scene
             .lights

@@ -280,6 +280,14 @@ impl Object {
 }
 
 impl Scene {
+    /// Adds `dirs` to every shader's `#include` search path, after the shader's own folder and
+    /// the scene's `include` list (the command line's `-I`).
+    pub fn add_include_dirs(&mut self, dirs: &[PathBuf]) {
+        for shader in self.shaders_mut() {
+            shader.include_dirs.extend(dirs.iter().cloned());
+        }
+    }
+
     /// Every shader the scene refers to: the lights', then each object's surface, displacement
     /// and atmosphere, then the imager.
     pub fn shaders_mut(&mut self) -> impl Iterator<Item = &mut ShaderRef> {

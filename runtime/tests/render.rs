@@ -474,3 +474,58 @@ fn lights_and_atmospheres_read_their_surface_by_message_passing_on_both_backends
     let over_plain = render("an atmosphere over plain", "plain", "Kd = 1.0", true);
     assert_eq!(over_plain.pixels, plain.pixels);
 }
+
+/// Issue 24: `PI` read by a displacement or a light shader bound to a surface that does not read
+/// it was 0 on the GPU (its variable was set only for the surface), so a `threads.sl`-like
+/// displacement left a plain sphere there. The constant predefined variables are values in every
+/// function of the module now.
+#[test]
+fn pi_in_a_displacement_and_a_light_is_pi_on_both_backends() {
+    let source = "displacement threads(float Km = .1, frequency = 5.0, dampzone = 0.05) {
+            float magnitude = sin(PI * 2 * (t * frequency + s)) * Km;
+            if (t > (1 - dampzone)) magnitude *= (1.0 - t) / dampzone;
+            else if (t < dampzone) magnitude *= t / dampzone;
+            P += normalize(N) * magnitude;
+            N = calculatenormal(P);
+        }
+        light round(float intensity = 1; point from = point(-2, 3, -4)) {
+            illuminate(from, normalize(point(0, 0, 0) - from), PI / 4) {
+                Cl = intensity * color(1, 1, 1) / (L . L) * (PI / PI);
+            }
+        }
+        surface matte() {
+            normal Nf = normalize(N);
+            color c = 0;
+            illuminance(P, Nf, 1.5707963) { c += Cl * max(0, normalize(L) . Nf); }
+            Ci = c;
+        }";
+    let scene = |displaced: bool| {
+        let displacement =
+            if displaced { "displacement = { shader = \"threads.sl\", name = \"threads\" }\n" } else { "" };
+        format!(
+            "[output]\nwidth = 48\nheight = 48\n[camera]\nfrom = [0, 0, -5]\nto = [0, 0, 0]\nfov = 40\n\
+             [[light]]\nshader = \"threads.sl\"\nname = \"round\"\nparams = {{ intensity = 25.0 }}\n\
+             [[object]]\nmesh = \"sphere\"\ndetail = 48\nshader = \"threads.sl\"\nname = \"matte\"\n{displacement}"
+        )
+    };
+    let gpu = patina_runtime::gpu::for_tests();
+    let render = |displaced: bool| -> Image {
+        let s = written_scene("threads", source, &scene(displaced));
+        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{e}"));
+        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{e}"));
+        assert!(cpu.pixels.iter().flatten().all(|x| x.is_finite()));
+        if let Some(gpu) = &gpu {
+            let image = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{e}"));
+            // Normals from screen derivatives: the displacement scene's allowance.
+            let t = Thresholds { hard_fail: 0.05, ..Thresholds::default() };
+            let c = compare(&cpu, &image, &t).unwrap();
+            assert!(c.passes(&t) && c.nan_pixels == 0, "GPU and CPU images differ: {c:?}");
+        }
+        cpu
+    };
+    let (plain, threaded) = (render(false), render(true));
+    let lit = plain.pixels.iter().filter(|p| p[0] > 0.05).count();
+    let changed =
+        plain.pixels.iter().zip(&threaded.pixels).filter(|(a, b)| (a[0] - b[0]).abs() > 0.05).count();
+    assert!(lit > 200 && changed > lit / 4, "{lit} lit pixels, {changed} changed by the threads");
+}

@@ -155,19 +155,9 @@ pub fn compile_kernel(
     let point = t.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
     let point = t.pointer(point);
     t.store(point, index);
-    // What the interpreter gives a shader before its inputs: the constants among the predefined
-    // variables, and each parameter that is not an input its default (the interpreter evaluates
-    // defaults once per batch; here once per invocation, in declaration order).
-    for (name, value) in [("PI", std::f64::consts::PI), ("ncomps", 3.0)] {
-        let used =
-            shader.exprs.iter().any(|e| matches!(e.kind, crate::ir::ExprKind::Global(g) if g.name == name));
-        if used {
-            let var = t.global_var(name, Type::FLOAT, false);
-            let v = t.float(value);
-            let p = t.pointer(var);
-            t.store(p, v);
-        }
-    }
+    // What the interpreter gives a shader before its inputs: each parameter that is not an input
+    // its default (the interpreter evaluates defaults once per batch; here once per invocation,
+    // in declaration order). The constant predefined variables are literals where they are read.
     for &param in &shader.params {
         let local = shader.local(param);
         let is_input = ins.iter().any(|(_, target)| matches!(target, Target::Local(l) if *l == param));

@@ -34,6 +34,10 @@ impl Translator<'_> {
                 let p = self.pointer(g);
                 self.load(p)
             }
+            // The constant predefined variables are values, as in the interpreter, in every
+            // function of the module (a light's or displacement's included).
+            ExprKind::Global(g) if g.name == "PI" => self.float(std::f64::consts::PI),
+            ExprKind::Global(g) if g.name == "ncomps" => self.float(3.0),
             ExprKind::Global(g) => {
                 let var = self.global_var(g.name, Type::of(g.ty), g.perlight);
                 let p = self.pointer(var);

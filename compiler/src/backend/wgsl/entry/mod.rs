@@ -297,14 +297,6 @@ fn init_uniform_inputs(t: &mut Translator, shader: &Shader, uses: &Uses, stage: 
             t.store(p, value);
         }
     }
-    for (name, value) in [("PI", std::f64::consts::PI), ("ncomps", 3.0)] {
-        if uses.has_global(name) {
-            let var = t.global_var(name, Type::FLOAT, false);
-            let v = t.float(value);
-            let p = t.pointer(var);
-            t.store(p, v);
-        }
-    }
 }
 
 /// A value read from the uniform block in the language's form (booleans from `u32`, arrays

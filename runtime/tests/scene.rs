@@ -498,3 +498,33 @@ fn the_bench_and_reference_scenes_load_and_their_knobs_resolve() {
         assert!(count >= 2, "{dir}: {count} scenes");
     }
 }
+
+/// Issue 24: a scene's `include` list is searched by every shader's `#include` after the shader's
+/// own folder (relative to the scene); an empty entry is a one-line error.
+#[test]
+fn a_scenes_include_list_is_searched_by_its_shaders() {
+    let dir = std::env::temp_dir().join(format!("patina-scene-include-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("shaders")).unwrap();
+    std::fs::create_dir_all(dir.join("lib")).unwrap();
+    std::fs::write(dir.join("lib/tint.h"), "color tint() { return color(1, 0.5, 0.25); }\n").unwrap();
+    std::fs::write(dir.join("shaders/s.sl"), "#include <tint.h>\nsurface s() { Ci = tint(); }\n").unwrap();
+    let text = |include: &str| {
+        format!(
+            "{include}[output]\nwidth = 8\nheight = 8\n[camera]\nfrom = [0, 0, -3]\nto = [0, 0, 0]\n\
+             [[object]]\nmesh = \"sphere\"\nshader = \"shaders/s.sl\"\n"
+        )
+    };
+    let file = dir.join("scene.toml");
+    let without = Scene::parse(&text(""), &file, &dir).unwrap();
+    let e =
+        patina_runtime::render::prepare(&without).err().expect("tint.h is not beside the shader").to_string();
+    assert!(e.contains("cannot find `tint.h`"), "{e}");
+    let with = Scene::parse(&text("include = [\"lib\"]\n"), &file, &dir).unwrap();
+    assert_eq!(with.objects[0].surface.include_dirs, [dir.join("lib")]);
+    let prepared = patina_runtime::render::prepare(&with).unwrap_or_else(|e| panic!("{e}"));
+    let image =
+        patina_runtime::render::render(&prepared, patina_runtime::render::Backend::Cpu, None).unwrap();
+    assert_eq!(image.pixels[(4 * 8 + 4) as usize], [1.0, 0.5, 0.25, 1.0]);
+    let e = Scene::parse(&text("include = [\" \"]\n"), &file, &dir).unwrap_err().to_string();
+    assert!(e.contains("include[0]") && e.contains("empty") && !e.contains('\n'), "{e}");
+}

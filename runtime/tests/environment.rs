@@ -292,3 +292,51 @@ fn a_wide_footprint_reads_the_mip_chain_trilinearly() {
         );
     }
 }
+
+/// The mean, in f64, of the level-0 texels of `skycube:16`'s face `face` in the `n` × `n` block
+/// at block (i, j): the texel of the chain's level log2(n) there.
+fn cube_block_mean(face: u32, i: u32, j: u32, n: u32) -> [f64; 3] {
+    let mut sum = [0.0; 3];
+    for b in 0..n {
+        for a in 0..n {
+            let t = sky(cube_centre(face, i * n + a, j * n + b, 16)).map(|c| f64::from(c as f32));
+            (0..3).for_each(|c| sum[c] += t[c]);
+        }
+    }
+    sum.map(|c| c / f64::from(n * n))
+}
+
+#[test]
+fn a_wide_footprint_reads_a_cube_maps_chain() {
+    let gpu = patina_runtime::gpu::for_tests();
+    let mut backends = vec![(Backend::Cpu, None)];
+    if let Some(g) = gpu.as_ref() {
+        backends.push((Backend::Gpu, Some(g)));
+    }
+    // +X, which the horizon crosses: the centre of level 2's texel (1, 2), a 4 × 4 face there, the
+    // ground's checks just below the horizon. "blur" 1/16 of the 4 × 16 texels around the
+    // equator is 4 texels: level 2.
+    let d = cube_centre(0, 1, 2, 4);
+    let level2 = cube_block_mean(0, 1, 2, 4);
+    let sharp = sky(cube_centre(0, 4, 8, 16));
+    // A footprint wider than the face: the last level, one texel, the face's mean.
+    let whole = cube_block_mean(0, 0, 0, 16);
+    let differ = |a: [f64; 3], b: [f64; 3]| (0..3).any(|q| (a[q] - b[q]).abs() > 0.01);
+    assert!(
+        differ(level2, sharp) && differ(level2, whole),
+        "{sharp:?} {level2:?} {whole:?}: the levels differ here"
+    );
+    for (label, form, spread, expected) in
+        [("blur 1/16", 3, 1.0 / 16.0, level2), ("a wide footprint", 2, 4.0, whole)]
+    {
+        let scene = probe_scene_spread("skycube:16", d, form, spread);
+        let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{e}"));
+        for (backend, g) in &backends {
+            let image = render::render(&prepared, *backend, *g).unwrap_or_else(|e| panic!("{e}"));
+            let got = image.pixels[(4 * image.width + 4) as usize];
+            let error = (0..3).map(|q| (f64::from(got[q]) - expected[q]).abs()).fold(0.0, f64::max);
+            println!("cube, {label} on {backend:?}: {got:?}, expected {expected:?}, error {error:.2e}");
+            assert!(error < 1e-4, "cube, {label} on {backend:?}: {got:?} vs {expected:?}");
+        }
+    }
+}

@@ -21,7 +21,8 @@
 //! the same bilinear filter over a 2D texture that holds either a lat-long map or a cube map, told
 //! apart at run time by the texture's shape (`runtime/src/render/textures.rs` makes both):
 //!
-//! - a **cube map** is an atlas three faces wide and two tall (width × 2 = height × 3): faces
+//! - a **cube map** is an atlas three faces wide and two tall (width × 2 = height × 3, or
+//!   width × 4 = (height + 2) × 3 with its chain below it): faces
 //!   +X, −X, +Y in the top row, −Y, +Z, −Z in the bottom one, each F × F texels (F = width / 3).
 //!   The face is D's major axis (ties go to x, then y), chosen branch-free, and the face
 //!   coordinates are OpenGL's: (u, v) = ((sc / |ma| + 1) / 2, (tc / |ma| + 1) / 2) with (sc, tc)
@@ -40,8 +41,11 @@
 //! `"__footprint"` (added by [`footprints`] before `opt::derivs`: √area(D), from D's screen
 //! derivatives) over |D|, times `"width"` when given; in level-0 texels it is
 //! f · w / 2π + blur · w (`"blur"`, a fraction of the map's width, when given), and the level is
-//! log2 of that (at least 1 texel), clamped to the last level. Cube maps and maps without a
-//! chain are read at level 0, where `"blur"` and `"width"` do nothing.
+//! log2 of that (at least 1 texel), clamped to the last level. A cube atlas may carry its chain
+//! too (`skycube:N`, `cube:` with faces a power of two wide): 3F wide and 4F − 2 tall, each
+//! level (faces half as wide) below the previous one, down to faces of one texel; its footprint
+//! is counted in the texels around its equator, 4F, as a lat-long map's in its width. Maps
+//! without a chain are read at level 0, where `"blur"` and `"width"` do nothing.
 //!
 //! Other optional `"name", value` pairs after a lookup's positional arguments are skipped here.
 //!
@@ -323,7 +327,14 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let h = b.call("__texsize2d", vec![texture, one]);
     let w2 = b.binary(BinaryOp::Mul, w, two);
     let h3 = b.binary(BinaryOp::Mul, h, three);
-    let is_cube = b.binary(BinaryOp::Eq, w2, h3);
+    let plain_cube = b.binary(BinaryOp::Eq, w2, h3);
+    // A cube atlas with its chain: 3F wide, 4F - 2 tall (4w = 3(h + 2)).
+    let four = b.int(4);
+    let w4 = b.binary(BinaryOp::Mul, w, four);
+    let h_two = b.binary(BinaryOp::Add, h, two);
+    let h_two3 = b.binary(BinaryOp::Mul, h_two, three);
+    let cube_chain = b.binary(BinaryOp::Eq, w4, h_two3);
+    let is_cube = b.binary(BinaryOp::Or, plain_cube, cube_chain);
 
     // Lat-long coordinates.
     let xx = b.binary(BinaryOp::Mul, x, x);
@@ -384,32 +395,39 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let size = b.binary(BinaryOp::Div, w, three);
     let column = b.binary(BinaryOp::Rem, face, three);
     let row = b.binary(BinaryOp::Div, face, three);
-    let ox = b.binary(BinaryOp::Mul, column, size);
-    let oy = b.binary(BinaryOp::Mul, row, size);
 
-    // The mip level: a lat-long map with its chain (h = w - 1: level 0, w × w/2, on top, each next
-    // level half as wide and tall below the last) is read at log2 of the footprint in level-0
-    // texels, trilinearly between the two levels about it; other maps at level 0.
+    // The mip level: a map with its chain (a lat-long map w wide and w - 1 tall: level 0, w × w/2,
+    // on top, each next level half as wide and tall below the last; a cube atlas 3F wide and
+    // 4F - 2 tall, its levels likewise) is read at log2 of the footprint in level-0 texels,
+    // trilinearly between the two levels about it; other maps at level 0.
     let w_less_one = b.binary(BinaryOp::Sub, w, one);
     let chain_shape = b.binary(BinaryOp::Eq, h, w_less_one);
-    let is_latlong = b.binary(BinaryOp::Ne, w2, h3);
-    let has_chain = b.binary(BinaryOp::And, chain_shape, is_latlong);
+    let not_plain_cube = b.binary(BinaryOp::Ne, w2, h3);
+    let not_cube_chain = b.binary(BinaryOp::Ne, w4, h_two3);
+    let is_latlong = b.binary(BinaryOp::And, not_plain_cube, not_cube_chain);
+    let latlong_chain = b.binary(BinaryOp::And, chain_shape, is_latlong);
+    let has_chain = b.binary(BinaryOp::Or, latlong_chain, cube_chain);
     let half_w = b.binary(BinaryOp::Div, w, two);
-    let level0_h = b.select(has_chain, half_w, h);
-    let w_f = b.convert(w, Type::FLOAT);
-    let h0_f = b.convert(level0_h, Type::FLOAT);
+    let level0_h = b.select(latlong_chain, half_w, h);
+    // Level 0's rows (a lat-long map) or a face's (a cube): the chain ends at one.
+    let rows0 = b.select(is_cube, size, level0_h);
+    let h0_f = b.convert(rows0, Type::FLOAT);
     let base = b.float(2.0);
     let top_level = b.call("log", vec![h0_f, base]);
     let top_level = b.binary(BinaryOp::Add, top_level, half);
     let top_level = b.call("floor", vec![top_level]);
     // The footprint in level-0 texels: an angle (the width over |D|) times the texels per radian
-    // along the equator, scaled by "width", plus "blur" map widths.
+    // around the equator (a lat-long map's width, a cube's four faces), scaled by "width", plus
+    // "blur" times those texels.
+    let around_cube = b.binary(BinaryOp::Mul, size, four);
+    let equator = b.select(is_cube, around_cube, w);
+    let equator = b.convert(equator, Type::FLOAT);
     let mut texels = zero_f;
     if let Some(width) = footprint.width {
         let length = b.call("sqrt", vec![len2]);
         let length = b.call("max", vec![length, tiny]);
         let angle = b.binary(BinaryOp::Div, width, length);
-        let per_radian = b.binary(BinaryOp::Mul, w_f, inv_two_pi);
+        let per_radian = b.binary(BinaryOp::Mul, equator, inv_two_pi);
         texels = b.binary(BinaryOp::Mul, angle, per_radian);
         if let Some(scale) = footprint.scale {
             let scale = b.convert(scale, Type::FLOAT);
@@ -418,7 +436,7 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     }
     if let Some(blur) = footprint.blur {
         let blur = b.convert(blur, Type::FLOAT);
-        let blur = b.binary(BinaryOp::Mul, blur, w_f);
+        let blur = b.binary(BinaryOp::Mul, blur, equator);
         texels = b.binary(BinaryOp::Add, texels, blur);
     }
     let texels = b.call("max", vec![texels, one_f]);
@@ -443,11 +461,16 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let level = |b: &mut Builder, l: ExprId| {
         let across = b.binary(BinaryOp::Shr, across0, l);
         let down = b.binary(BinaryOp::Shr, down0, l);
-        // Level l's first row: 2 h0 - 2 (h0 >> l), the heights of the levels above it.
+        // Level l's first row: 2 h0 - 2 (h0 >> l), the heights of the levels above it (each
+        // level of a cube atlas two faces tall: twice that), then the face's row in it.
         let twice = b.binary(BinaryOp::Mul, down0, two);
         let twice_l = b.binary(BinaryOp::Mul, down, two);
         let first_row = b.binary(BinaryOp::Sub, twice, twice_l);
-        let row_offset = b.select(is_cube, oy, first_row);
+        let cube_first = b.binary(BinaryOp::Mul, first_row, two);
+        let oy = b.binary(BinaryOp::Mul, row, down);
+        let cube_row = b.binary(BinaryOp::Add, cube_first, oy);
+        let row_offset = b.select(is_cube, cube_row, first_row);
+        let ox = b.binary(BinaryOp::Mul, column, across);
         let across_f = b.convert(across, Type::FLOAT);
         let down_f = b.convert(down, Type::FLOAT);
         let (x0, x1, wx) = split(b, s, across_f);

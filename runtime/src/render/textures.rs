@@ -31,9 +31,13 @@
 //!   +X, −X, +Y in the top row and −Y, +Z, −Z below, face texel (i, j) the sky along the
 //!   direction of its centre (sc, tc) = (2 (i + ½) / N − 1, 2 (j + ½) / N − 1) in OpenGL's face
 //!   axes (+X: (1, −tc, −sc), −X: (−1, −tc, sc), +Y: (sc, 1, tc), −Y: (sc, −1, −tc),
-//!   +Z: (sc, −tc, 1), −Z: (−sc, −tc, −1));
+//!   +Z: (sc, −tc, 1), −Z: (−sc, −tc, −1)); for N a power of two with the atlas's mip chain
+//!   stacked below it (levels of half the width and height, texels the means of 2 × 2, down to
+//!   faces of one texel: a texture 3N × (4N − 2), rows padded with black), which an environment
+//!   lookup reads trilinearly by its footprint;
 //! - `cube:A,B,C,D,E,F`: a cube map from six square images of one size (files as below), in the
-//!   order +X, −X, +Y, −Y, +Z, −Z, packed into that atlas.
+//!   order +X, −X, +Y, −Y, +Z, −Z, packed into that atlas (with its chain when the faces are a
+//!   power of two wide).
 //!
 //! - `env:FILE`: the lat-long map FILE (2:1, a power of two tall) with its mip chain: levels of
 //!   half the width and height, each texel the mean of 2 × 2 of the level above, down to 2 × 1,
@@ -44,8 +48,8 @@
 //! The empty name is no map: one black, transparent texel. Any other name is a file relative to
 //! the scene's directory: PNG (8 or 16 bits), or Radiance HDR (`.hdr`, kept in linear floats). An
 //! environment lookup reads a texture three texels wide for every two tall as a cube-map atlas,
-//! one w wide and w − 1 tall as a lat-long map with its mip chain, and any other one as a
-//! lat-long map (2:1) at level 0.
+//! one 3N wide and 4N − 2 tall as a cube-map atlas with its chain, one w wide and w − 1 tall as
+//! a lat-long map with its mip chain, and any other one as a lat-long map (2:1) at level 0.
 
 use std::path::Path;
 use std::sync::Arc;
@@ -219,9 +223,17 @@ fn read_file(name: &str, base: &Path) -> Result<Texture, RenderError> {
 /// level the mean of 2 × 2 texels of the previous one, down to 2 × 1, stacked in one texture
 /// w × (w − 1) (the layout `environment` lookups read, compiler/src/opt/textures.rs).
 fn with_chain(w: u32, h: u32, level0: Vec<[f32; 4]>) -> Texture {
+    stacked_chain(w, h, level0, 1)
+}
+
+/// Level 0 (w × h) and each level below it, half as wide and tall, its texels the means of 2 × 2
+/// of the level above, down to `last` rows, stacked in one texture w wide (each level's rows
+/// padded with black to w).
+fn stacked_chain(w: u32, h: u32, level0: Vec<[f32; 4]>, last: u32) -> Texture {
     let mut texels = level0.clone();
     let (mut level, mut lw, mut lh) = (level0, w, h);
-    while lh > 1 {
+    let mut height = h;
+    while lh > last {
         let (nw, nh) = (lw / 2, lh / 2);
         let next: Vec<[f32; 4]> = (0..nw * nh)
             .map(|i| {
@@ -231,17 +243,19 @@ fn with_chain(w: u32, h: u32, level0: Vec<[f32; 4]>) -> Texture {
                 [0, 1, 2, 3].map(|k| (a[k] + b[k] + c[k] + d[k]) * 0.25)
             })
             .collect();
-        // Each row of the texture is w texels wide: the rest of a level's row is black padding.
         for row in next.chunks(nw as usize) {
             texels.extend_from_slice(row);
             texels.extend(std::iter::repeat_n([0.0f32, 0.0, 0.0, 1.0], (w - nw) as usize));
         }
+        height += nh;
         (level, lw, lh) = (next, nw, nh);
     }
-    Texture { size: [w, w - 1, 1], texels: Arc::from(texels) }
+    Texture { size: [w, height, 1], texels: Arc::from(texels) }
 }
 
-/// Six n × n faces (+X, −X, +Y, −Y, +Z, −Z) packed into the 3n × 2n cube-map atlas.
+/// Six n × n faces (+X, −X, +Y, −Y, +Z, −Z) packed into the 3n × 2n cube-map atlas; when n is a
+/// power of two, with the atlas's mip chain below it down to faces of one texel (a texture
+/// 3n × (4n − 2): a 2 × 2 block of a level never straddles two faces).
 fn atlas(n: u32, faces: &[Vec<[f32; 4]>]) -> Texture {
     let (w, h) = (3 * n, 2 * n);
     let texels = (0..w * h)
@@ -251,6 +265,9 @@ fn atlas(n: u32, faces: &[Vec<[f32; 4]>]) -> Texture {
             faces[face][((y % n) * n + x % n) as usize]
         })
         .collect::<Vec<_>>();
+    if n.is_power_of_two() {
+        return stacked_chain(w, h, texels, 2);
+    }
     Texture { size: [w, h, 1], texels: Arc::from(texels) }
 }
 
@@ -378,9 +395,19 @@ mod tests {
             face.write_png(dir.join(name)).unwrap();
         }
         let cube = load(&format!("cube:{}", names.join(",")), &dir).unwrap();
-        assert_eq!(cube.size, [6, 4, 1]);
+        // The atlas, 6 x 4, and its chain (faces of one texel, 3 x 2) below it.
+        assert_eq!(cube.size, [6, 6, 1]);
         let red = |x: u32, y: u32| (cube.texels[(y * 6 + x) as usize][0] * 8.0).round() as u32;
         assert_eq!([red(0, 0), red(3, 1), red(5, 0), red(0, 2), red(2, 3), red(5, 3)], [0, 1, 2, 3, 4, 5]);
+        assert_eq!([red(0, 4), red(1, 4), red(2, 4), red(0, 5), red(1, 5), red(2, 5)], [0, 1, 2, 3, 4, 5]);
+        // Faces three texels wide have no chain.
+        for (k, name) in names.iter().enumerate() {
+            let v = k as f32 / 8.0;
+            let face = crate::image::Image { width: 3, height: 3, pixels: vec![[v, 0.0, 0.0, 1.0]; 9] };
+            face.write_png(dir.join(format!("odd{name}"))).unwrap();
+        }
+        let odd: Vec<String> = names.iter().map(|n| format!("odd{n}")).collect();
+        assert_eq!(load(&format!("cube:{}", odd.join(",")), &dir).unwrap().size, [9, 6, 1]);
         // Faces of different sizes, or not square, are one error naming the face.
         let wide = crate::image::Image { width: 4, height: 2, pixels: vec![[0.0; 4]; 8] };
         wide.write_png(dir.join("wide.png")).unwrap();
@@ -428,7 +455,25 @@ mod tests {
         assert_ne!(large.texels[(19 * 128 + 90) as usize], [4.0, 3.6, 3.0, 1.0]);
         // The cube map's face texels agree with the formula along their own directions.
         let cube = load("skycube:4", base).unwrap();
-        assert_eq!(cube.size, [12, 8, 1]);
+        // The atlas (12 x 8) and its chain below it: 6 x 4 and 3 x 2, in 4 * 4 - 2 = 14 rows.
+        assert_eq!(cube.size, [12, 14, 1]);
+        // Level 1's first texel is the mean of +X's top-left 2 x 2 block; level 2's +Z texel
+        // (the second of its bottom row) the mean of the +Z face.
+        let mean = |texels: &[[f32; 4]]| {
+            [0, 1, 2, 3].map(|k| texels.iter().map(|t| t[k]).sum::<f32>() / texels.len() as f32)
+        };
+        let at = |x: u32, y: u32| cube.texels[(y * 12 + x) as usize];
+        let block = [at(0, 0), at(1, 0), at(0, 1), at(1, 1)];
+        assert_eq!(
+            cube.texels[(8 * 12) as usize],
+            [0, 1, 2, 3].map(|k| (block[0][k] + block[1][k] + block[2][k] + block[3][k]) * 0.25)
+        );
+        let face: Vec<[f32; 4]> =
+            (4..8).flat_map(|y| (4..8).map(move |x| (x, y))).map(|(x, y)| at(x, y)).collect();
+        let level2 = at(1, 13);
+        assert!((0..4).all(|k| (level2[k] - mean(&face)[k]).abs() < 1e-6), "{level2:?} {:?}", mean(&face));
+        // Past each level's width, the rows are black padding.
+        assert_eq!(at(6, 8), [0.0, 0.0, 0.0, 1.0]);
         // +Y face (top row, third), texel (1, 2): sc = -0.25, tc = 0.25, D = (-0.25, 1, 0.25).
         let texel = cube.texels[(2 * 12 + 8 + 1) as usize];
         assert_eq!(texel, sky_texel([-0.25, 1.0, 0.25]).map(|c| c as f32));

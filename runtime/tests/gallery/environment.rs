@@ -30,13 +30,14 @@ fn disc_mean(image: &Image, cx: f64, cy: f64, r: f64, c: usize) -> f64 {
 #[test]
 fn shinymetal_mirrors_the_sky_alike_on_both_backends() {
     let s = scene("shinymetal", 128, 72);
-    // The sky:64 sphere's mip level comes from the footprint of the reflected direction, from
-    // screen derivatives: differences across the 2 x 2 quad on the GPU (helper invocations off
-    // the sphere at its silhouette), analytic on the CPU. So the whole image is compared with a
-    // looser hard fail (measured at 128 x 72: 9 pixels over 0.004, the largest 0.028) and the
-    // interior, pixels whose 3 x 3 neighbourhood is covered in both images, with the default
-    // thresholds (measured: 2 pixels over 0.004, the largest 0.0085).
-    let silhouette = Thresholds { hard_fail: 0.05, ..Thresholds::default() };
+    // Each sphere's mip level (sky:64's chain, skycube:32's) comes from the footprint of the
+    // reflected direction, from screen derivatives: differences across the 2 x 2 quad on the GPU
+    // (helper invocations off the sphere at its silhouette), analytic on the CPU. So the whole
+    // image is compared with a looser hard fail (measured at 128 x 72: 21 pixels over 0.004, the
+    // largest 0.060, all at the silhouettes) and the interior, pixels whose 3 x 3 neighbourhood is
+    // covered in both images, with the default thresholds (measured: 3 pixels over 0.004, the
+    // largest 0.0085).
+    let silhouette = Thresholds { hard_fail: 0.08, ..Thresholds::default() };
     let image = match both("shinymetal", &s, silhouette) {
         Some(r) => {
             println!("shinymetal: GPU vs CPU {:?}", r.comparison);

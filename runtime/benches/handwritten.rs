@@ -7,8 +7,10 @@
 //! with a trivial shader on the same side, which leaves the shading; the table gives
 //! generated / hand-written.
 //!
-//! So far fBm (6 octaves of Perlin's improved noise, the standard library's `fbm`); plastic with
-//! four lights, Hart's wood and a hypertexture march are still to be written by hand.
+//! So far fBm (6 octaves of Perlin's improved noise, the standard library's `fbm`) and plastic
+//! under four point lights (examples/shaders/plastic.sl and lights.sl's pointlight; by hand, the
+//! lights' positions and colours in a uniform buffer as the renderer has them); Hart's wood and a
+//! hypertexture march are still to be written by hand.
 
 use std::time::{Duration, Instant};
 
@@ -83,6 +85,33 @@ fn improved_noise(p: vec3f) -> f32 {
         u.z);
 }
 
+// Plastic (RenderMan's: ambient, diffuse and specular sums) under four point lights whose
+// camera-space positions and colours (intensity / distance^2 follows) come from the uniforms.
+struct Lights {
+    position: array<vec4f, 4>,
+    colour: array<vec4f, 4>,
+};
+@group(0) @binding(0) var<uniform> lights: Lights;
+
+@fragment
+fn plastic4(in: Varyings) -> @location(0) vec4f {
+    // The plane in the camera's space: z = 2, 4 wide.
+    let p = vec3f(in.uv.x * 4.0 - 2.0, 2.0 - in.uv.y * 4.0, 2.0);
+    let n = faceForward(vec3f(0.0, 0.0, -1.0), p, vec3f(0.0, 0.0, -1.0));
+    let v = -normalize(p);
+    let cs = vec3f(1.0);
+    var diffuse = vec3f(0.0);
+    var specular = vec3f(0.0);
+    for (var k = 0; k < 4; k++) {
+        let l = lights.position[k].xyz - p;
+        let cl = lights.colour[k].xyz / dot(l, l);
+        let ln = normalize(l);
+        diffuse += cl * max(0.0, dot(ln, n));
+        specular += cl * pow(max(0.0, dot(n, normalize(ln + v))), 1.0 / 0.1);
+    }
+    return vec4f(cs * (0.5 * diffuse) + 0.5 * specular, 1.0);
+}
+
 @fragment
 fn baseline(in: Varyings) -> @location(0) vec4f {
     return vec4f(in.uv, 0.0, 1.0);
@@ -120,16 +149,33 @@ fn handwritten_module() -> naga::Module {
     naga::front::wgsl::parse_str(&text).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&text)))
 }
 
-/// The renderer's program for `surface`, on a plane that fills the view.
-fn patina_scene(surface: &str) -> Prepared {
+/// The four point lights of the plastic scene, in world space (the camera's space is the world
+/// moved 2 along z), and their intensity.
+const LIGHTS: [[f32; 3]; 4] = [[-1.5, 1.5, -1.0], [1.5, 1.5, -1.0], [-1.5, -1.5, -1.0], [1.5, -1.5, -1.0]];
+const INTENSITY: f32 = 2.0;
+
+/// The renderer's program for `surface` of `file`, on a plane that fills the view, under
+/// `lights` of the example point lights.
+fn patina_scene(file: &str, surface: &str, lights: &[[f32; 3]]) -> Prepared {
     let dir = std::env::temp_dir().join(format!("patina-handwritten-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("bench.sl"), SURFACES).unwrap();
     // The plane (the unit square, s and t across it) scaled past the view's edges: at distance 2
     // with a 90° field of view the view is 4 wide.
+    let examples = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/shaders");
+    let lights: String = lights
+        .iter()
+        .map(|[x, y, z]| {
+            format!(
+                "[[light]]\nshader = \"{examples}/lights.sl\"\nname = \"pointlight\"\n\
+                 params = {{ intensity = {INTENSITY:?}, from = [{x:?}, {y:?}, {z:?}] }}\n"
+            )
+        })
+        .collect();
+    let file = if file == "bench.sl" { file.to_string() } else { format!("{examples}/{file}") };
     let text = format!(
         "[output]\nwidth = {SIZE}\nheight = {SIZE}\n[camera]\nfrom = [0, 0, -2]\nto = [0, 0, 0]\nfov = 90\n\
-         [[object]]\nmesh = \"plane\"\ndetail = 1\nshader = \"bench.sl\"\nname = \"{surface}\"\n\
+         {lights}[[object]]\nmesh = \"plane\"\ndetail = 1\nshader = \"{file}\"\nname = \"{surface}\"\n\
          transform = [{{ scale = [4.2, 4.2, 1.0] }}]\n"
     );
     let scene = Scene::parse(&text, dir.join("bench.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
@@ -161,13 +207,21 @@ fn bench(c: &mut Criterion) {
     }];
     let indices = [0, 1, 2, 0, 2, 3];
     let target = Target { width: SIZE, height: SIZE, format: TargetFormat::Rgba32Float, clear: [0.0; 4] };
+    // The uniforms of `plastic4`: the lights' camera-space positions, then their colours.
+    let uniforms: Vec<u8> = LIGHTS
+        .iter()
+        .map(|[x, y, z]| [*x, *y, z + 2.0, 1.0])
+        .chain(LIGHTS.iter().map(|_| [INTENSITY; 4]))
+        .flatten()
+        .flat_map(f32::to_le_bytes)
+        .collect();
     let handwritten = |entry: &str| {
         let draw = Draw {
             module: &module,
             fingerprint: Some(0x4a4e_5752_4954_5445 ^ entry.len() as u64),
             vertex_entry: "vs_main",
             fragment_entry: entry,
-            uniforms: &[],
+            uniforms: if entry == "plastic4" { &uniforms } else { &[] },
             textures: &[],
             samplers: false,
             attributes: &quad,
@@ -179,38 +233,44 @@ fn bench(c: &mut Criterion) {
     let generated = |prepared: &Prepared| {
         std::hint::black_box(render::render(prepared, Backend::Gpu, Some(&gpu)).expect("the scene renders"));
     };
+    // (label, the Patina scene, the hand-written entry point), after the baseline.
+    let shaders = [
+        ("fBm, 6 octaves of improved noise", patina_scene("bench.sl", "fbm_bench", &[]), "fbm_bench"),
+        ("plastic, 4 point lights", patina_scene("plastic.sl", "plastic", &LIGHTS), "plastic4"),
+    ];
+    let base_scene = patina_scene("bench.sl", "baseline", &[]);
+    // Pipeline creation and the driver's compile, once each, outside the measurement.
+    handwritten("baseline");
+    generated(&base_scene);
     let mut group = c.benchmark_group("handwritten");
     group.sample_size(10);
-    let (base_scene, fbm_scene) = (patina_scene("baseline"), patina_scene("fbm_bench"));
-    // Pipeline creation and the driver's compile, once each, outside the measurement.
-    for entry in ["baseline", "fbm_bench"] {
+    for (label, scene, entry) in &shaders {
         handwritten(entry);
+        generated(scene);
+        group.bench_function(format!("generated {label}"), |b| b.iter(|| generated(scene)));
+        group.bench_function(format!("hand-written {label}"), |b| b.iter(|| handwritten(entry)));
     }
-    generated(&base_scene);
-    generated(&fbm_scene);
-    group.bench_function("generated fbm", |b| b.iter(|| generated(&fbm_scene)));
-    group.bench_function("hand-written fbm", |b| b.iter(|| handwritten("fbm_bench")));
     group.finish();
     let runs = 31;
     let generated_base = median(|| generated(&base_scene), runs);
-    let generated_fbm = median(|| generated(&fbm_scene), runs);
     let hand_base = median(|| handwritten("baseline"), runs);
-    let hand_fbm = median(|| handwritten("fbm_bench"), runs);
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
-    let generated_shading = generated_fbm.saturating_sub(generated_base);
-    let hand_shading = hand_fbm.saturating_sub(hand_base);
     println!(
         "\n{SIZE}x{SIZE} pixels on {}; the shading's time is a render's less the trivial shader's\n",
         gpu.adapter_description()
     );
     println!("| shader | generated ms | hand-written ms | generated / hand-written |");
     println!("|---|---|---|---|");
-    println!(
-        "| fBm, 6 octaves of improved noise | {:.2} | {:.2} | {:.2} |",
-        ms(generated_shading),
-        ms(hand_shading),
-        generated_shading.as_secs_f64() / hand_shading.as_secs_f64().max(1e-9)
-    );
+    for (label, scene, entry) in &shaders {
+        let generated_shading = median(|| generated(scene), runs).saturating_sub(generated_base);
+        let hand_shading = median(|| handwritten(entry), runs).saturating_sub(hand_base);
+        println!(
+            "| {label} | {:.2} | {:.2} | {:.2} |",
+            ms(generated_shading),
+            ms(hand_shading),
+            generated_shading.as_secs_f64() / hand_shading.as_secs_f64().max(1e-9)
+        );
+    }
     println!(
         "\n(renders with the trivial shader: generated {:.2} ms, hand-written {:.2} ms)",
         ms(generated_base),

@@ -182,6 +182,14 @@ fn eval_reports_a_runaway_loop_at_its_position() {
     assert_eq!(out.status.code(), Some(1));
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert!(stderr.contains("error[E0702]") && stderr.contains("loop.sl:3:3"), "{stderr}");
+    // Issue 23: the help states the default budget, which a run without --budget also stops at.
+    let help = String::from_utf8(patina(&["eval", "--help"]).stdout).unwrap();
+    let line = help.lines().find(|l| l.contains("--budget")).unwrap_or_default();
+    let default = patina_compiler::backend::cpu::eval::DEFAULT_BUDGET;
+    assert!(line.contains(&format!("[default: {default}]")), "{line}");
+    let out = patina(&["eval", file.to_str().unwrap()]);
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains(&format!("{default}")), "{stderr}");
 }
 
 #[test]

@@ -122,15 +122,13 @@ pub fn run(args: EvalArgs) -> Result<ExitCode, String> {
 fn evaluate<F: patina_compiler::backend::cpu::scalar::Real>(
     program: &CpuProgram,
     uniform: &[(String, Vec<f64>)],
-    budget: Option<u64>,
+    budget: u64,
     count: usize,
     inputs: &[(&str, &[f64])],
     outputs: &[&str],
 ) -> Result<Vec<Vec<f64>>, EvalError> {
     let mut eval = Evaluator::<F>::new(program);
-    if let Some(b) = budget {
-        eval.set_budget(b);
-    }
+    eval.set_budget(budget);
     for (name, value) in uniform {
         eval.set(name, value)?;
     }

@@ -255,9 +255,9 @@ pub struct EvalArgs {
     /// Evaluate in double precision (the ground-truth mode) instead of f32.
     #[arg(long)]
     f64: bool,
-    /// The most iterations any loop may run.
-    #[arg(long, value_name = "N")]
-    budget: Option<u64>,
+    /// The most iterations any loop may run (the interpreter's default; docs/limits.md).
+    #[arg(long, value_name = "N", default_value_t = patina_compiler::backend::cpu::eval::DEFAULT_BUDGET)]
+    budget: u64,
     /// A directory to search for `#include` files.
     #[arg(short = 'I', value_name = "DIR")]
     include: Vec<PathBuf>,

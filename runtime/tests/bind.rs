@@ -274,3 +274,28 @@ fn the_cache_serves_a_moving_camera() {
     // The same specialized program draws what the dynamic one does, from either camera.
     assert_same_pictures(&s);
 }
+
+/// Issue 23: the cache keys a shader by its own text, and checks the files it includes when it is
+/// found: an edited include is compiled again (it used to be served from the cache), an
+/// unchanged one is not.
+#[test]
+fn the_cache_compiles_again_when_an_included_file_changes() {
+    let dir = std::env::temp_dir().join(format!("patina-cache-include-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let header = dir.join("tint.h");
+    std::fs::write(&header, "color tint() { return color(1, 0, 0); }\n").unwrap();
+    std::fs::write(dir.join("s.sl"), "#include \"tint.h\"\nsurface s() { Ci = tint(); }\n").unwrap();
+    let text = "[output]\nwidth = 8\nheight = 8\n[camera]\nfrom = [0, 0, -3]\nto = [0, 0, 0]\n\
+                [[object]]\nmesh = \"sphere\"\nshader = \"s.sl\"\n";
+    let s = Scene::parse(text, dir.join("s.toml"), &dir).unwrap();
+    let centre = |p: &Prepared| render::render(p, Backend::Cpu, None).unwrap().pixels[4 * 8 + 4];
+    let mut cache = render::Cache::new();
+    let red = render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!(centre(&red), [1.0, 0.0, 0.0, 1.0]);
+    let same = render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!((cache.hits, cache.misses, centre(&same)), (1, 1, [1.0, 0.0, 0.0, 1.0]));
+    std::fs::write(&header, "color tint() { return color(0, 0, 1); }\n").unwrap();
+    let blue = render::prepare_cached(&s, Options::default(), &mut cache).unwrap();
+    assert_eq!((cache.hits, cache.misses), (1, 2), "the edited include is compiled again");
+    assert_eq!(centre(&blue), [0.0, 0.0, 1.0, 1.0]);
+}

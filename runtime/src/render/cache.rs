@@ -10,20 +10,26 @@
 //! is seen by the shader in camera space, so it stays in the uniform block, see
 //! `program::camera_dependent`), and a program found here is rebound to the new camera (its host
 //! part runs again, `program::rebind_surface` and `program::rebind_light`). Such parameters are
-//! still in the key by their world-space value, which the camera does not change. Files a shader
-//! includes are not part of the key: editing an included file needs a fresh cache.
+//! still in the key by their world-space value, which the camera does not change. A shader's
+//! include directories are in the key; the files it includes are checked when it is found: a
+//! program is kept with the text of every file its shaders included (read when it was compiled),
+//! and one whose included file has changed since is compiled again.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
+use std::path::PathBuf;
 
-use super::program::{LightProgram, SurfaceProgram};
+use super::program::{LightProgram, LoadedShader, SurfaceProgram};
 use crate::scene::{ParamValue, ShaderRef};
+
+/// The files a program's shaders included, each with a hash of the text they were compiled from.
+type Included = Vec<(PathBuf, u64)>;
 
 /// Compiled surfaces and lights, by key; see the module documentation.
 #[derive(Default)]
 pub struct Cache {
-    surfaces: HashMap<String, SurfaceProgram>,
-    lights: HashMap<String, LightProgram>,
+    surfaces: HashMap<String, (SurfaceProgram, Included)>,
+    lights: HashMap<String, (LightProgram, Included)>,
     /// How many programs were found compiled.
     pub hits: usize,
     /// How many programs had to be compiled.
@@ -42,7 +48,10 @@ impl Cache {
 
     pub(super) fn keep_surface(&mut self, key: String, program: &SurfaceProgram) {
         self.misses += 1;
-        self.surfaces.insert(key, program.clone());
+        let shaders = std::iter::once(&program.loaded)
+            .chain(program.displacement.as_ref().map(|d| &d.loaded))
+            .chain(program.atmosphere.as_ref().map(|a| &a.loaded));
+        self.surfaces.insert(key, (program.clone(), included(shaders)));
     }
 
     pub(super) fn light(&mut self, key: &str) -> Option<&LightProgram> {
@@ -51,15 +60,37 @@ impl Cache {
 
     pub(super) fn keep_light(&mut self, key: String, program: &LightProgram) {
         self.misses += 1;
-        self.lights.insert(key, program.clone());
+        self.lights.insert(key, (program.clone(), included(std::iter::once(&program.loaded))));
     }
 }
 
-/// The program kept under `key`, counting a hit when there is one.
-fn found<'a, T>(programs: &'a HashMap<String, T>, key: &str, hits: &mut usize) -> Option<&'a T> {
-    let program = programs.get(key);
+/// The program kept under `key` whose included files are as it was compiled from, counting a hit
+/// when there is one.
+fn found<'a, T>(programs: &'a HashMap<String, (T, Included)>, key: &str, hits: &mut usize) -> Option<&'a T> {
+    let program = programs.get(key).filter(|(_, files)| {
+        files.iter().all(|(path, was)| {
+            // Read as the compiler reads sources (a Latin-1 file included).
+            patina_compiler::syntax::preprocess::read_source_file(path)
+                .is_ok_and(|text| text.is_some_and(|text| hash(&text) == *was))
+        })
+    });
     *hits += usize::from(program.is_some());
-    program
+    program.map(|(p, _)| p)
+}
+
+/// The files on disk that `shaders` included, with a hash of the text they were compiled from
+/// (the standard library's modules, compiled into the program, never change under it).
+fn included<'a>(shaders: impl Iterator<Item = &'a LoadedShader>) -> Included {
+    let mut files = Included::new();
+    for shader in shaders {
+        for (_, file) in shader.sources.files() {
+            let path = PathBuf::from(&file.name);
+            if file.included_from.is_some() && path.is_file() && !files.iter().any(|(p, _)| *p == path) {
+                files.push((path, hash(&file.text)));
+            }
+        }
+    }
+    files
 }
 
 /// The part of a key that names one shader and the values compiled into it: every parameter the
@@ -68,6 +99,9 @@ pub(super) fn shader_key(shader: &ShaderRef, skip: &[String]) -> String {
     let text = std::fs::read_to_string(&shader.path).unwrap_or_default();
     let mut key =
         format!("{}#{}#{}|", shader.path.display(), shader.name.as_deref().unwrap_or(""), hash(&text));
+    for dir in &shader.include_dirs {
+        let _ = write!(key, "include {};", dir.display());
+    }
     for (name, value) in &shader.params {
         // Strings (texture and space names) are compiled in even into a dynamic program.
         if skip.contains(name) && !matches!(value, ParamValue::String(_)) {

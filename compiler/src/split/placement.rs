@@ -40,15 +40,23 @@ pub(crate) struct Placement {
     pub written: FxHashMap<Var, StageKind>,
     /// The stage of each expression.
     expr: Vec<StageKind>,
+    /// For each `if` and inlined call that may leave its block early, the stage of the conditions
+    /// under which it does, by the statement's address (the body does not move while placement
+    /// runs); recomputed with `expr` each round, so that a chain of `else if`s is walked once,
+    /// not once per link.
+    exits: FxHashMap<*const Stmt, StageKind>,
 }
 
 impl Placement {
     /// Computes the placement of every value of `shader`.
     pub fn new(shader: &Shader) -> Placement {
-        let mut p = Placement { written: FxHashMap::default(), expr: Vec::new() };
+        let mut p =
+            Placement { written: FxHashMap::default(), expr: Vec::new(), exits: FxHashMap::default() };
         // Stages only rise, and there are three: the fixpoint is reached in a few rounds.
         loop {
             p.expr = exprs(shader, &p.written);
+            p.exits.clear();
+            p.exits_of(&shader.body);
             let before = p.written.clone();
             p.block(shader, &shader.body, StageKind::Host, false);
             if p.written == before {
@@ -122,29 +130,52 @@ impl Placement {
     /// The stage of the conditions under which `stmt` may leave its block early (`Host` when it
     /// never does, or does unconditionally).
     fn exit_stage(&self, stmt: &Stmt) -> StageKind {
-        match stmt {
-            Stmt::If { cond, then, otherwise } => {
-                let inner = self.exits_in(then).max(self.exits_in(otherwise));
-                if leaves(then) || leaves(otherwise) { inner.max(self.of(*cond)) } else { inner }
-            }
-            Stmt::Inline { body, .. } => self.exits_in(body),
-            _ => StageKind::Host,
-        }
+        self.exits.get(&(stmt as *const Stmt)).copied().unwrap_or(StageKind::Host)
     }
 
     fn exits_in(&self, block: &Block) -> StageKind {
         block.iter().map(|s| self.exit_stage(s)).max().unwrap_or(StageKind::Host)
     }
-}
 
-/// Whether a block contains a `break`, `continue` or `return` (at any depth outside loops).
-fn leaves(block: &Block) -> bool {
-    block.iter().any(|s| match s {
-        Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => true,
-        Stmt::If { then, otherwise, .. } => leaves(then) || leaves(otherwise),
-        Stmt::Inline { body, .. } => leaves(body),
-        _ => false,
-    })
+    /// Whether `block` may leave early (a `break`, `continue` or `return` at any depth outside
+    /// loops) and the stage of the conditions under which it does, recording the stage of each
+    /// `if` and inlined call in it (nested ones, in loops and light constructs too) in `exits`:
+    /// one walk of the body.
+    fn exits_of(&mut self, block: &Block) -> (bool, StageKind) {
+        let (mut leaves, mut stage) = (false, StageKind::Host);
+        for stmt in block {
+            let (l, s) = match stmt {
+                Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => (true, StageKind::Host),
+                Stmt::If { cond, then, otherwise } => {
+                    let (lt, st) = self.exits_of(then);
+                    let (lo, so) = self.exits_of(otherwise);
+                    let l = lt || lo;
+                    let s = if l { st.max(so).max(self.of(*cond)) } else { st.max(so) };
+                    self.exits.insert(stmt as *const Stmt, s);
+                    (l, s)
+                }
+                Stmt::Inline { body, .. } => {
+                    let (l, s) = self.exits_of(body);
+                    self.exits.insert(stmt as *const Stmt, s);
+                    (l, s)
+                }
+                // Their own exits stay inside them; the statements in them are recorded.
+                Stmt::Loop { body, step, .. } => {
+                    self.exits_of(body);
+                    self.exits_of(step);
+                    (false, StageKind::Host)
+                }
+                Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                    self.exits_of(body);
+                    (false, StageKind::Host)
+                }
+                _ => (false, StageKind::Host),
+            };
+            leaves |= l;
+            stage = stage.max(s);
+        }
+        (leaves, stage)
+    }
 }
 
 /// The stage of every expression, given the stages of the variables written in the body.

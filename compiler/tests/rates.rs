@@ -1063,3 +1063,47 @@ fn a_functions_constant_counter_answers_only_to_conditions_inside_it() {
     let outside = lines(&["surface t() { constant float j = 0; if (s > 0.5) j = 1; Ci = j; }"]);
     assert_eq!(codes(&outside).0, vec![Code::ControlDependence]);
 }
+
+/// Issue 23: a variable with a declared rate whose only store is its initialiser, declared inside
+/// a varying branch, is read only in that branch after its declaration: no E0605 (a `uniform`
+/// one was reported; a `constant` one already was not). Stored again there under another
+/// varying condition, or stored once but not by its declaration, it still is.
+#[test]
+fn a_uniform_variable_declared_and_initialised_in_a_varying_branch_is_not_control_dependent() {
+    for rate in ["uniform", "constant"] {
+        let (found, _) = codes(&lines(&[
+            "surface s()",
+            "{",
+            "    float v = 0;",
+            "    if (s > 0.5) {",
+            &format!("        {rate} float k = 2;"),
+            "        v = k * s;",
+            "    }",
+            "    Ci = v;",
+            "}",
+        ]));
+        assert!(found.is_empty(), "{rate}: {found:?}");
+    }
+    let (found, _) = codes(&lines(&[
+        "surface s()",
+        "{",
+        "    float v = 0;",
+        "    if (s > 0.5) {",
+        "        uniform float k = 2;",
+        "        if (t > 0.5) k = 3;",
+        "        v = k * s;",
+        "    }",
+        "    Ci = v;",
+        "}",
+    ]));
+    assert!(!found.is_empty() && found.iter().all(|c| *c == Code::ControlDependence), "{found:?}");
+    let (found, _) = codes(&lines(&[
+        "surface s()",
+        "{",
+        "    uniform float x;",
+        "    if (s > 0.5) x = 1;",
+        "    Ci = x;",
+        "}",
+    ]));
+    assert_eq!(found, [Code::ControlDependence]);
+}

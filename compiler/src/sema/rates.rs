@@ -383,15 +383,15 @@ impl Analysis<'_> {
         }
         match root(place) {
             Target::Local(l) => {
-                // A variable declared `constant` whose only store is its initialiser, with a
-                // constant, is read only after its declaration (its scope), where it holds that
-                // constant whatever control flow the declaration is under: a `constant` table
-                // declared in a loop, or in a function inlined into one.
+                // A variable with a declared rate whose only store is its initialiser, with a
+                // value of that rate, is read only after its declaration (its scope), where it
+                // holds that value whatever control flow the declaration is under: a `constant`
+                // table declared in a loop or in a function inlined into one, a `uniform float
+                // k = 2` declared in a varying branch.
                 let local = &self.shader.locals[l.0 as usize];
                 if local.declared
-                    && local.rate.frequency == Frequency::Constant
                     && self.initialised_only[l.0 as usize]
-                    && value_rate.frequency == Frequency::Constant
+                    && value_rate.fits_in(local.rate)
                     && !value_rate.perlight
                 {
                     (control, origin) = (Rate::CONSTANT, None);

@@ -12,12 +12,16 @@
 //! lights' positions and colours in a uniform buffer as the renderer has them); Hart's wood and a
 //! hypertexture march are still to be written by hand.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+
+#[path = "support/timing.rs"]
+mod timing;
 use patina_runtime::gpu::{Attribute, Blend, Draw, Gpu, Target, TargetFormat};
 use patina_runtime::render::{self, Backend, Prepared};
 use patina_runtime::scene::Scene;
+use timing::median;
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -180,18 +184,6 @@ fn patina_scene(file: &str, surface: &str, lights: &[[f32; 3]]) -> Prepared {
     );
     let scene = Scene::parse(&text, dir.join("bench.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
     render::prepare(&scene).unwrap_or_else(|e| panic!("{surface}: {e}"))
-}
-
-fn median(mut f: impl FnMut(), runs: usize) -> Duration {
-    let mut times: Vec<Duration> = (0..runs)
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[runs / 2]
 }
 
 fn bench(c: &mut Criterion) {

@@ -7,13 +7,17 @@
 //! without the noise (`Ci = P`): what remains is the noise, not the buffer transfers. Criterion
 //! reports each measurement; the summary table at the end gives the medians.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+
+#[path = "support/timing.rs"]
+mod timing;
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, Kernel, compile_kernel};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
+use timing::median;
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -72,18 +76,6 @@ fn points() -> Vec<f64> {
             (state >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0
         })
         .collect()
-}
-
-fn median(mut f: impl FnMut(), runs: usize) -> Duration {
-    let mut times: Vec<Duration> = (0..runs)
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[runs / 2]
 }
 
 fn run_gpu(gpu: &Gpu, kernel: &Kernel, input: &[u8]) {

@@ -131,6 +131,26 @@ fn written_scene(name: &str, source: &str, scene: &str) -> Scene {
     Scene::parse(scene, dir.join(format!("{name}.toml")), &dir).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The CPU reference's picture of `scene`, checked finite, and the GPU's compared with it within
+/// `t` (no NaN) when there is a GPU.
+fn cpu_checked_against_gpu(
+    label: &str,
+    scene: &Scene,
+    gpu: Option<&patina_runtime::gpu::Gpu>,
+    t: Thresholds,
+) -> Image {
+    let prepared = render::prepare(scene).unwrap_or_else(|e| panic!("{label}: {e}"));
+    let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
+    assert!(cpu.pixels.iter().flatten().all(|x| x.is_finite()), "{label}: not finite");
+    if let Some(gpu) = gpu {
+        let image =
+            render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
+        let c = compare(&cpu, &image, &t).unwrap();
+        assert!(c.passes(&t) && c.nan_pixels == 0, "{label}: GPU and CPU images differ: {c:?}");
+    }
+    cpu
+}
+
 #[test]
 fn stanford_matrices_and_object_space_inputs_agree_with_the_geometry() {
     // `__modelview * Pobj` is the eye-space P, `__invmodelview3 * __objnormal` lies along N, and
@@ -300,16 +320,7 @@ fn surfaces_read_their_lights_by_message_passing_on_both_backends() {
     let gpu = patina_runtime::gpu::for_tests();
     let render = |label: &str, surface: &str, key: &str| -> Image {
         let s = written_scene("messages", MESSAGES, &scene(surface, key));
-        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{label}: {e}"));
-        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
-        if let Some(gpu) = &gpu {
-            let image =
-                render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
-            let t = Thresholds::default();
-            let c = compare(&cpu, &image, &t).unwrap();
-            assert!(c.passes(&t), "{label}: GPU and CPU images differ: {c:?}");
-        }
-        cpu
+        cpu_checked_against_gpu(label, &s, gpu.as_ref(), Thresholds::default())
     };
     let key = render("the key light's category", "only = 1", "");
     let rim = render("not the key light's category", "only = 2", "");
@@ -359,16 +370,7 @@ fn a_string_parameter_passed_on_as_a_space_name_renders_on_both_backends() {
     let gpu = patina_runtime::gpu::for_tests();
     let render = |name: &str| -> Image {
         let s = written_scene("spaces", source, &scene(name));
-        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{name}: {e}"));
-        if let Some(gpu) = &gpu {
-            let image =
-                render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let t = Thresholds::default();
-            let c = compare(&cpu, &image, &t).unwrap();
-            assert!(c.passes(&t), "{name}: GPU and CPU images differ: {c:?}");
-        }
-        cpu
+        cpu_checked_against_gpu(name, &s, gpu.as_ref(), Thresholds::default())
     };
     let (passed, written) = (render("passed"), render("written"));
     assert_eq!(passed.pixels, written.pixels);
@@ -431,16 +433,7 @@ fn lights_and_atmospheres_read_their_surface_by_message_passing_on_both_backends
     let gpu = patina_runtime::gpu::for_tests();
     let render = |label: &str, surface: &str, params: &str, atmosphere: bool| -> Image {
         let s = written_scene("surface_messages", SURFACE_MESSAGES, &scene(surface, params, atmosphere));
-        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{label}: {e}"));
-        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
-        if let Some(gpu) = &gpu {
-            let image =
-                render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
-            let t = Thresholds::default();
-            let c = compare(&cpu, &image, &t).unwrap();
-            assert!(c.passes(&t), "{label}: GPU and CPU images differ: {c:?}");
-        }
-        cpu
+        cpu_checked_against_gpu(label, &s, gpu.as_ref(), Thresholds::default())
     };
     let half = render("Kd 0.5", "lit", "Kd = 0.5", false);
     let full = render("Kd 1", "lit", "Kd = 1.0", false);
@@ -511,17 +504,9 @@ fn pi_in_a_displacement_and_a_light_is_pi_on_both_backends() {
     let gpu = patina_runtime::gpu::for_tests();
     let render = |displaced: bool| -> Image {
         let s = written_scene("threads", source, &scene(displaced));
-        let prepared = render::prepare(&s).unwrap_or_else(|e| panic!("{e}"));
-        let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{e}"));
-        assert!(cpu.pixels.iter().flatten().all(|x| x.is_finite()));
-        if let Some(gpu) = &gpu {
-            let image = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{e}"));
-            // Normals from screen derivatives: the displacement scene's allowance.
-            let t = Thresholds { hard_fail: 0.05, ..Thresholds::default() };
-            let c = compare(&cpu, &image, &t).unwrap();
-            assert!(c.passes(&t) && c.nan_pixels == 0, "GPU and CPU images differ: {c:?}");
-        }
-        cpu
+        // Normals from screen derivatives: the displacement scene's allowance.
+        let t = Thresholds { hard_fail: 0.05, ..Thresholds::default() };
+        cpu_checked_against_gpu(if displaced { "threads" } else { "plain" }, &s, gpu.as_ref(), t)
     };
     let (plain, threaded) = (render(false), render(true));
     let lit = plain.pixels.iter().filter(|p| p[0] > 0.05).count();

@@ -255,6 +255,47 @@ fn shadow_map_holds_the_nearest_depth_and_its_matrix() {
     assert!(stored < floor_depth - 0.5, "stored {stored}, floor {floor_depth}");
 }
 
+/// The floor points of `image` in full shadow of the teapot and those clear of it, as ray casts
+/// towards the light (`light(q)`, the point a floor point `q` is lit from) decide: the first must
+/// equal the render with the light off (`dark`) and the second the one without shadow maps
+/// (`unshadowed`), which is asserted here.
+fn blocked_and_clear(
+    s: &Scene,
+    [image, unshadowed, dark]: [&Image; 3],
+    light: impl Fn(Vec3) -> Vec3,
+) -> (Vec<Vec3>, Vec<Vec3>) {
+    let teapot = Blocker::of(s, 1);
+    let camera = s.camera().from;
+    let offsets = [Vec3::ZERO, Vec3::X * 0.08, -Vec3::X * 0.08, Vec3::Z * 0.08, -Vec3::Z * 0.08];
+    let (mut blocked, mut clear) = (Vec::new(), Vec::new());
+    for y in 0..H {
+        for x in 0..W {
+            let Some(q) = floor_point(s, x, y) else { continue };
+            if q.x.abs() > 4.5 || q.z.abs() > 4.5 || teapot.blocks(camera, q, 0.0) {
+                continue;
+            }
+            let hits = offsets.iter().filter(|o| teapot.blocks(q + **o, light(q + **o), 0.2)).count();
+            let (shaded, lit, off) = (at(image, x, y), at(unshadowed, x, y), at(dark, x, y));
+            if hits == offsets.len() {
+                blocked.push(q);
+                assert!(
+                    (0..3).all(|c| (shaded[c] - off[c]).abs() < 1e-5),
+                    "({x}, {y}): {shaded:?} vs {off:?}"
+                );
+            } else if hits == 0
+                && !offsets.iter().any(|o| teapot.blocks(q + *o * 2.0, light(q + *o * 2.0), 0.0))
+            {
+                clear.push(q);
+                assert!(
+                    (0..3).all(|c| (shaded[c] - lit[c]).abs() < 1e-5),
+                    "({x}, {y}): {shaded:?} vs {lit:?}"
+                );
+            }
+        }
+    }
+    (blocked, clear)
+}
+
 #[test]
 fn orthographic_map_shadows_a_distant_light_along_parallel_rays() {
     let mut s = scene("shadowed_teapot", W, H);
@@ -285,35 +326,8 @@ fn orthographic_map_shadows_a_distant_light_along_parallel_rays() {
     };
     // Towards the light: every ray is parallel to from - to.
     let towards = (point("from") - point("to")).normalize() * 50.0;
-    let teapot = Blocker::of(&s, 1);
-    let camera = s.camera().from;
-    let offsets = [Vec3::ZERO, Vec3::X * 0.08, -Vec3::X * 0.08, Vec3::Z * 0.08, -Vec3::Z * 0.08];
-    let (mut blocked, mut clear) = (0, 0);
-    for y in 0..H {
-        for x in 0..W {
-            let Some(q) = floor_point(&s, x, y) else { continue };
-            if q.x.abs() > 4.5 || q.z.abs() > 4.5 || teapot.blocks(camera, q, 0.0) {
-                continue;
-            }
-            let hits = offsets.iter().filter(|o| teapot.blocks(q + **o, q + **o + towards, 0.2)).count();
-            let (shaded, lit, off) = (at(&image, x, y), at(&unshadowed, x, y), at(&dark, x, y));
-            if hits == offsets.len() {
-                blocked += 1;
-                assert!(
-                    (0..3).all(|c| (shaded[c] - off[c]).abs() < 1e-5),
-                    "({x}, {y}): {shaded:?} vs {off:?}"
-                );
-            } else if hits == 0
-                && !offsets.iter().any(|o| teapot.blocks(q + *o * 2.0, q + *o * 2.0 + towards, 0.0))
-            {
-                clear += 1;
-                assert!(
-                    (0..3).all(|c| (shaded[c] - lit[c]).abs() < 1e-5),
-                    "({x}, {y}): {shaded:?} vs {lit:?}"
-                );
-            }
-        }
-    }
+    let (blocked, clear) = blocked_and_clear(&s, [&image, &unshadowed, &dark], |q| q + towards);
+    let (blocked, clear) = (blocked.len(), clear.len());
     println!("shadowed_teapot, distant: {blocked} pixels in full shadow, {clear} clear of it");
     assert!(blocked > 40 && clear > 1000, "{blocked} blocked, {clear} clear");
 }
@@ -370,44 +384,23 @@ fn a_point_light_casts_shadows_through_a_cube_of_six_maps() {
         unshadowed.lights[0].shader.params.insert(format!("sf{face}"), ParamValue::String(String::new()));
     }
     let unshadowed = cpu("shadowed_teapot, point without maps", &unshadowed);
-    let teapot = Blocker::of(&s, 1);
-    let camera = s.camera().from;
-    let offsets = [Vec3::ZERO, Vec3::X * 0.08, -Vec3::X * 0.08, Vec3::Z * 0.08, -Vec3::Z * 0.08];
-    let (mut blocked, mut clear) = (0, 0);
-    let mut faces_lit = std::collections::BTreeSet::new();
-    for y in 0..H {
-        for x in 0..W {
-            let Some(q) = floor_point(&s, x, y) else { continue };
-            if q.x.abs() > 4.5 || q.z.abs() > 4.5 || teapot.blocks(camera, q, 0.0) {
-                continue;
+    let (blocked, clear) = blocked_and_clear(&s, [&image, &unshadowed, &dark], |_| from);
+    // Which face of the cube each clear point's lookup read: the major axis of the direction from
+    // the light.
+    let faces_lit: std::collections::BTreeSet<usize> = clear
+        .iter()
+        .map(|q| {
+            let l = *q - from;
+            if l.x.abs() > l.y.abs() && l.x.abs() > l.z.abs() {
+                0
+            } else if l.y.abs() > l.z.abs() {
+                1
+            } else {
+                2
             }
-            let hits = offsets.iter().filter(|o| teapot.blocks(q + **o, from, 0.2)).count();
-            let (shaded, lit, off) = (at(&image, x, y), at(&unshadowed, x, y), at(&dark, x, y));
-            if hits == offsets.len() {
-                blocked += 1;
-                assert!(
-                    (0..3).all(|c| (shaded[c] - off[c]).abs() < 1e-5),
-                    "({x}, {y}): {shaded:?} vs {off:?}"
-                );
-            } else if hits == 0 && !offsets.iter().any(|o| teapot.blocks(q + *o * 2.0, from, 0.0)) {
-                clear += 1;
-                assert!(
-                    (0..3).all(|c| (shaded[c] - lit[c]).abs() < 1e-5),
-                    "({x}, {y}): {shaded:?} vs {lit:?}"
-                );
-                // Which face of the cube the lookup read: the major axis of the direction from the light.
-                let l = q - from;
-                let major = if l.x.abs() > l.y.abs() && l.x.abs() > l.z.abs() {
-                    0
-                } else if l.y.abs() > l.z.abs() {
-                    1
-                } else {
-                    2
-                };
-                faces_lit.insert(major);
-            }
-        }
-    }
+        })
+        .collect();
+    let (blocked, clear) = (blocked.len(), clear.len());
     println!(
         "shadowed_teapot, point: {blocked} pixels in full shadow, {clear} clear of it, faces {faces_lit:?}"
     );

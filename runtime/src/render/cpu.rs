@@ -401,12 +401,7 @@ fn shade_batch(
         for (input, name) in &messages {
             let column = match read_back.iter().position(|r| r == name) {
                 Some(at) => outs[2 + at].clone(),
-                None => {
-                    let values = &prepared.lights[k].values;
-                    let value =
-                        values.iter().find(|(v, _)| v == name).map(|(_, v)| v.as_slice()).unwrap_or(&[]);
-                    (0..n).flat_map(|_| value.iter().copied()).collect()
-                }
+                None => broadcast(&prepared.lights[k].values, name, n).unwrap_or_default(),
             };
             columns.push((input.clone(), column));
         }
@@ -561,12 +556,17 @@ fn set_surface_flags(eval: &mut Evaluator<f32>, reader: &CpuProgram, surface: &S
 }
 
 /// A surface parameter's per-draw value (what the host computed, as the GPU's uniform block
-/// holds it) for each of `n` points; zeros where the surface has none.
+/// holds it) for each of `n` points; zeros where the surface has none of that width.
 fn uniform_column(surface: &SurfaceProgram, name: &str, width: usize, n: usize) -> Vec<f64> {
-    match surface.uniforms.iter().find(|(u, _)| u == name) {
-        Some((_, v)) if v.len() == width => (0..n).flat_map(|_| v.iter().copied()).collect(),
-        _ => vec![0.0; n * width],
-    }
+    broadcast(&surface.uniforms, name, n)
+        .filter(|c| c.len() == width * n)
+        .unwrap_or_else(|| vec![0.0; n * width])
+}
+
+/// The value named `name` among `values` repeated for each of `n` points.
+fn broadcast(values: &[(String, Vec<f64>)], name: &str, n: usize) -> Option<Vec<f64>> {
+    let (_, v) = values.iter().find(|(v, _)| v == name)?;
+    Some((0..n).flat_map(|_| v.iter().copied()).collect())
 }
 
 /// Gives a stage program the object's textures it reads.

@@ -49,6 +49,10 @@ pub enum Context {
     Surface,
     /// Only in light shaders.
     Light,
+    /// Only in light and volume (atmosphere) shaders: those bound with a surface.
+    LightOrVolume,
+    /// Only inside `illuminance`, where one light is visited.
+    Illuminance,
 }
 
 /// A parameter of a built-in.
@@ -322,6 +326,8 @@ fn parse_line(line: &'static str) -> Result<Vec<Builtin>, String> {
             "integrate" => rate = RateRule::Integrate,
             "surface" => context = Context::Surface,
             "light" => context = Context::Light,
+            "light_or_volume" => context = Context::LightOrVolume,
+            "illuminance" => context = Context::Illuminance,
             other => return Err(format!("unknown attribute `{other}`")),
         }
     }

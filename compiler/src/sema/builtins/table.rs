@@ -190,11 +190,11 @@ pub const SIGNATURES: &[&str] = &[
     // Message passing, answered by binding (the shaders are bound together): inside `illuminance`,
     // the parameter of that name of the light being visited, written to the output with 1
     // returned when the light has one of the output's type, 0 and nothing written otherwise.
-    "for T in float|color|point|vector|normal: float lightsource(string, output T) [fragment]",
+    "for T in float|color|point|vector|normal: float lightsource(string, output T) [fragment, illuminance]",
     // In a light or an atmosphere (volume) shader: the parameter of that name of the surface it
     // is bound with, written to the output with 1 returned when the surface has one of the
     // output's type, 0 and nothing written otherwise.
-    "for T in float|color|point|vector|normal: float surface(string, output T) [fragment]",
+    "for T in float|color|point|vector|normal: float surface(string, output T) [fragment, light_or_volume]",
     // ---------------------------------------------------------------------------------------------
     // RenderMan 15.7: texture mapping. The result type chooses between a channel and a colour;
     // the implicit filter region comes from screen derivatives.

@@ -229,23 +229,6 @@ impl Lowerer<'_> {
                 self.inline_call(f, &args, span, outer, in_library, out)
             }
             Candidate::Builtin(b) => {
-                if b.name == "lightsource" && self.light_loop != super::LightLoop::Illuminance {
-                    self.error(
-                        Diagnostic::error(
-                            Code::OutsideLightLoop,
-                            "`lightsource` exists only inside `illuminance`",
-                            callee.span,
-                            "it reads a parameter of the light being visited",
-                        )
-                        .with_help("move this into an `illuminance` block"),
-                    );
-                    return None;
-                }
-                if b.name == "surface"
-                    && !matches!(self.kind, ast::ShaderKind::Light | ast::ShaderKind::Volume)
-                {
-                    return self.wrong_kind(callee, "light or volume");
-                }
                 if matches!(b.name, "lightsource" | "surface")
                     && !matches!(args[0].kind, ast::ExprKind::String(_))
                 {
@@ -263,6 +246,23 @@ impl Lowerer<'_> {
                     }
                     Context::Light if self.kind != ast::ShaderKind::Light => {
                         return self.wrong_kind(callee, "light");
+                    }
+                    Context::LightOrVolume
+                        if !matches!(self.kind, ast::ShaderKind::Light | ast::ShaderKind::Volume) =>
+                    {
+                        return self.wrong_kind(callee, "light or volume");
+                    }
+                    Context::Illuminance if self.light_loop != super::LightLoop::Illuminance => {
+                        self.error(
+                            Diagnostic::error(
+                                Code::OutsideLightLoop,
+                                format!("`{}` exists only inside `illuminance`", b.name),
+                                callee.span,
+                                "it reads a parameter of the light being visited",
+                            )
+                            .with_help("move this into an `illuminance` block"),
+                        );
+                        return None;
                     }
                     _ => {}
                 }
@@ -334,7 +334,6 @@ impl Lowerer<'_> {
     /// raster space (so a resize recompiles nothing); `"Exposure"` writes gain and gamma, 1 and 1,
     /// to a `float[2]`.
     fn option_call(&mut self, args: &[ast::Expr], span: Span, out: &mut Block) -> Option<ExprId> {
-        use crate::ir::types::Base;
         use crate::ir::{Literal, Place};
         let [name, target] = args else {
             self.error(Diagnostic::error(
@@ -428,7 +427,6 @@ impl Lowerer<'_> {
         out: &mut Block,
     ) -> Option<ExprId> {
         use crate::ir::Literal;
-        use crate::ir::types::Base;
         let name = callee.name.as_str();
         let lowered: Vec<ExprId> = args.iter().map(|a| self.expr(a, None, out)).collect::<Option<_>>()?;
         let Some((&format, values)) = lowered.split_first() else {
@@ -565,7 +563,6 @@ impl Lowerer<'_> {
         span: Span,
         out: &mut Block,
     ) -> Option<ExprId> {
-        use crate::ir::types::Base;
         let lowered: Vec<ExprId> = args.iter().map(|a| self.expr(a, None, out)).collect::<Option<_>>()?;
         let valid = lowered.len() == 4 && {
             let types: Vec<Type> = lowered.iter().map(|&a| self.ty(a)).collect();

@@ -26,6 +26,7 @@ mod strings;
 mod tables;
 mod textures;
 mod uses;
+mod values;
 
 use naga::Span as NSpan;
 

@@ -4,10 +4,14 @@
 //! at each call. The stdlib's noises declare their tables inside the functions, so a shader with
 //! many noise calls would otherwise build the same 256-entry array for every call.
 //!
-//! Only integer and boolean tables: with float tables whose values the driver can see, lavapipe's
-//! LLVM folds the arithmetic on them differently from the interpreter (1 ulp in a spline over
-//! constant knots, found by runtime/tests/stdlib_shaping_gpu.rs), and the backends promise the
-//! same bits. Integer operations are exact whatever is folded.
+//! Integer and boolean tables, and float tables of at least [`SHARED_FLOAT_TABLE`] elements. With
+//! a short float table whose values the driver can see, lavapipe's LLVM folds the arithmetic on
+//! them differently from the interpreter (1 ulp in a spline over constant knots, found by
+//! runtime/tests/stdlib_shaping_gpu.rs), and the backends promise the same bits; integer
+//! operations are exact whatever is folded. A long float table is a gradient table read at a
+//! hashed index (Perlin's 1985 noise: 768 floats), which nothing can fold, and composing it at
+//! every call is what the driver cannot afford: one `perlin_noise3` took lavapipe 3.2 s to
+//! compile that way (runtime/benches/pipelines.rs, docs/performance.md).
 
 use naga::{Expression, Handle, Literal as NLit, Span};
 use rustc_hash::FxHashMap;
@@ -19,6 +23,9 @@ use crate::ir::{ExprId, ExprKind, Literal, LocalId, Shader, UnaryOp};
 /// A table's element values, as naga literals (their bits identify the table).
 pub(crate) type Contents = Vec<NLit>;
 
+/// The fewest elements of a float table that is shared (see the module's comment).
+pub(crate) const SHARED_FLOAT_TABLE: u32 = 64;
+
 /// The locals of `shader` that are constant tables, with their contents.
 pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
     crate::ir::stores::stores(shader)
@@ -29,8 +36,8 @@ pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
             let table = local.declared
                 && local.rate.frequency == Frequency::Constant
                 && !local.rate.perlight
-                && local.ty.array.is_some()
-                && matches!(local.ty.base, Base::Int | Base::Uint | Base::Bool);
+                && local.ty.array.is_some_and(|n| local.ty.base != Base::Float || n >= SHARED_FLOAT_TABLE)
+                && matches!(local.ty.base, Base::Int | Base::Uint | Base::Bool | Base::Float);
             let value = stores.only_initialiser(local.span).filter(|_| table)?;
             let ExprKind::Construct(parts) = &shader.expr(value).kind else { return None };
             let contents: Option<Contents> =

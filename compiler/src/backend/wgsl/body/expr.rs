@@ -30,6 +30,9 @@ impl Translator<'_> {
                 if self.shader.local(*l).ty.base == Base::String {
                     return Err(self.error(span, "a string used as a value"));
                 }
+                if self.values.contains(l) {
+                    return self.value(*l, span);
+                }
                 let g = self.local_var(*l);
                 let p = self.pointer(g);
                 self.load(p)

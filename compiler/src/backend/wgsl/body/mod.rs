@@ -1,8 +1,9 @@
 //! A stage's body (or a light shader's) to naga: statements and expressions.
 //!
-//! Every language variable is a private (per-invocation) module variable, so inlined function
-//! bodies can become naga functions of their own (their `return` is then naga's `return`), and
-//! the entry points fill inputs and read outputs around one call of the body. Expressions are
+//! A language variable is a private (per-invocation) module variable, so inlined function bodies
+//! can become naga functions of their own (their `return` is then naga's `return`), and the entry
+//! points fill inputs and read outputs around one call of the body; a variable stored once before
+//! all its reads is the stored value instead (`super::values`). Expressions are
 //! translated per statement (a statement's subexpressions are shared; the next statement reads
 //! variables afresh), as the interpreter does.
 
@@ -10,7 +11,7 @@ use naga::{
     BinaryOperator, Expression, Handle, Literal as NLit, MathFunction, ScalarKind, Span, Statement,
     UnaryOperator,
 };
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 use smol_str::SmolStr;
 
 mod bound;
@@ -73,8 +74,12 @@ pub(crate) struct Translator<'a> {
     functions: u32,
     /// The constant tables among the locals, which live in initialized module variables.
     tables: FxHashMap<LocalId, super::tables::Contents>,
-    /// The stores into each local, found at the first loop (for its trip count).
-    stores: Option<Vec<crate::ir::stores::Stores>>,
+    /// The stores into each local (for loops' trip counts and the values).
+    stores: Vec<crate::ir::stores::Stores>,
+    /// The locals that are values, not variables (`super::values`).
+    values: FxHashSet<LocalId>,
+    /// The value of each of them stored so far in the function being built.
+    value_of: FxHashMap<LocalId, Value>,
 }
 
 /// A value with its language type, for the helpers that dispatch on types.
@@ -91,6 +96,9 @@ impl<'a> Translator<'a> {
         function: &str,
     ) -> Self {
         let names = variable_names(shader, prefix);
+        let tables = super::tables::find(shader);
+        let stores = crate::ir::stores::stores(shader);
+        let values = super::values::find(shader, &stores, &tables);
         Translator {
             mb,
             shader,
@@ -106,8 +114,10 @@ impl<'a> Translator<'a> {
             random_sites: 0,
             names,
             functions: 0,
-            tables: super::tables::find(shader),
-            stores: None,
+            tables,
+            stores,
+            values,
+            value_of: FxHashMap::default(),
         }
     }
 
@@ -122,6 +132,7 @@ impl<'a> Translator<'a> {
 
     /// The private variable holding local `l` (per light for per-light locals).
     pub fn local_var(&mut self, l: LocalId) -> Handle<naga::GlobalVariable> {
+        debug_assert!(!self.values.contains(&l), "local {l:?} is a value, not a variable");
         let local = self.shader.local(l);
         let mut name = self.names[&l].clone();
         if let Some(contents) = self.tables.get(&l) {
@@ -140,6 +151,24 @@ impl<'a> Translator<'a> {
             full = format!("{full}_L{}", self.light.unwrap_or(0));
         }
         self.mb.private(&full, ty)
+    }
+
+    /// The value stored into local `l`, which is a value (`super::values`).
+    pub(crate) fn value(&self, l: LocalId, span: SrcSpan) -> Result<Value, Diagnostic> {
+        self.value_of.get(&l).copied().ok_or_else(|| {
+            crate::backend::wgsl::internal(
+                span,
+                format!("internal error: `{}` read before its store", self.names[&l]),
+            )
+        })
+    }
+
+    /// Names an expression after the local it is the value of, so the WGSL reads `let x = ...`.
+    fn name_value(&mut self, v: Value, l: LocalId) {
+        let e = &self.fb.f.expressions[v];
+        if !e.needs_pre_emit() && !self.fb.f.named_expressions.contains_key(&v) {
+            self.fb.f.named_expressions.insert(v, self.names[&l].clone());
+        }
     }
 
     /// A pointer expression to a private variable.
@@ -184,6 +213,11 @@ impl<'a> Translator<'a> {
         match stmt {
             // A constant table's declaration: the module variable's initializer holds it.
             Stmt::Store { place: Place::Local(l), .. } if self.tables.contains_key(l) => {}
+            Stmt::Store { place: Place::Local(l), value, .. } if self.values.contains(l) => {
+                let v = self.expr(*value)?;
+                self.name_value(v, *l);
+                self.value_of.insert(*l, v);
+            }
             Stmt::Store { place, value, .. } => {
                 let v = self.expr(*value)?;
                 let p = self.place(place)?;
@@ -203,8 +237,8 @@ impl<'a> Translator<'a> {
                 self.fb.push(Statement::If { condition: c, accept, reject });
             }
             Stmt::Loop { cond, body, step, .. } => {
-                let stores = self.stores.get_or_insert_with(|| crate::ir::stores::stores(self.shader));
-                let counted = bound::constant_trip_count(self.shader, stores, before, *cond, step).is_none();
+                let counted =
+                    bound::constant_trip_count(self.shader, &self.stores, before, *cond, step).is_none();
                 let counter = counted.then(|| self.iteration_counter());
                 self.fb.open();
                 if let Some(c) = cond {
@@ -281,9 +315,11 @@ impl<'a> Translator<'a> {
         let name = format!("{}{}_{}", self.prefix, sanitize(function), self.functions);
         let outer = std::mem::replace(&mut self.fb, FnBuilder::new(&name));
         let memo = std::mem::take(&mut self.memo);
+        let values = std::mem::take(&mut self.value_of);
         let result = self.block(body);
         let inner = std::mem::replace(&mut self.fb, outer);
         self.memo = memo;
+        self.value_of = values;
         result?;
         let handle = self.mb.module.functions.append(inner.finish(), Span::UNDEFINED);
         self.fb.push(Statement::Call { function: handle, arguments: Vec::new(), result: None });

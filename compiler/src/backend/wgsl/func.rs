@@ -34,6 +34,14 @@ impl FnBuilder {
         }
     }
 
+    /// Appends an expression that a statement, not an `Emit`, brings into scope (a call's result).
+    pub fn add_unemitted(&mut self, e: Expression) -> Handle<Expression> {
+        self.flush();
+        let h = self.f.expressions.append(e, Span::UNDEFINED);
+        self.start = self.f.expressions.len();
+        h
+    }
+
     /// Closes the pending `Emit` range.
     fn flush(&mut self) {
         if self.start < self.f.expressions.len() {

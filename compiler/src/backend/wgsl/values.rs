@@ -2,6 +2,10 @@
 //! the same naga function and in a block the store's block encloses, is the stored expression
 //! itself (a WGSL `let`), not a private variable.
 //!
+//! An inlined call's naga function takes the values its body's leading parameter stores would
+//! store as arguments ([`arguments`]), and gives the value its last statement stores as its
+//! result ([`call_result`]), so that neither crosses the call in a private variable.
+//!
 //! Why: every other local lives in a private module variable, and Mesa's NIR passes (lavapipe)
 //! cost about the number of variables times the code's size: `noise_panel`'s 4,380 private
 //! variables made 70% of its 5-second pipeline creation (runtime/benches/pipelines.rs). The
@@ -13,6 +17,61 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use crate::ir::stores::Stores;
 use crate::ir::types::Base;
 use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
+
+/// How many leading statements of an inlined call's `body` store its parameters: whole stores
+/// of locals of number, vector or matrix type whose values read none of the locals stored
+/// before them. The call's naga function takes these values as arguments, computed by the caller.
+pub(crate) fn arguments(shader: &Shader, body: &[Stmt]) -> usize {
+    let mut stored = Vec::new();
+    for stmt in body {
+        let Stmt::Store { place: Place::Local(l), value, .. } = stmt else { break };
+        let local = shader.local(*l);
+        if local.function.is_none()
+            || local.ty.array.is_some()
+            || matches!(local.ty.base, Base::String | Base::Texref)
+            || reads_any(shader, *value, &stored)
+        {
+            break;
+        }
+        stored.push(*l);
+    }
+    stored.len()
+}
+
+/// Whether expression `id` reads any of `locals`.
+fn reads_any(shader: &Shader, id: ExprId, locals: &[LocalId]) -> bool {
+    let e = shader.expr(id);
+    if let ExprKind::Local(l) = e.kind
+        && locals.contains(&l)
+    {
+        return true;
+    }
+    let mut found = false;
+    e.kind.for_each_operand(|a| found = found || reads_any(shader, a, locals));
+    found
+}
+
+/// The local an inlined call's `body` gives back: the one of `values` its last statement before
+/// any trailing `return` stores, when no `return` comes earlier (an earlier one would leave
+/// without it). The call's naga function returns that value.
+pub(crate) fn call_result(body: &[Stmt], values: &FxHashSet<LocalId>) -> Option<LocalId> {
+    let end = body.iter().rposition(|s| !matches!(s, Stmt::Return))?;
+    let Stmt::Store { place: Place::Local(r), .. } = &body[end] else { return None };
+    (values.contains(r) && !body[..end].iter().any(returns)).then_some(*r)
+}
+
+/// Whether a statement may `return` from the function it is in (not from a call inside it).
+fn returns(stmt: &Stmt) -> bool {
+    match stmt {
+        Stmt::Return => true,
+        Stmt::Inline { .. } => false,
+        _ => {
+            let mut found = false;
+            stmt.for_each_block(|b| found = found || b.iter().any(returns));
+            found
+        }
+    }
+}
 
 /// Where a statement is: the block it is in (numbered in walk order), its index there, and
 /// whether that block is an inlined call's body (a naga function of its own).
@@ -63,13 +122,14 @@ pub(crate) fn find<T>(
         serial: 0,
         path: Vec::new(),
         store_at: FxHashMap::default(),
+        results: FxHashSet::default(),
         candidates: (0..shader.locals.len() as u32).map(LocalId).filter(|l| candidate(*l)).collect(),
         refused: FxHashSet::default(),
         seen: FxHashSet::default(),
     };
-    walk.block(&shader.body, false, Pass::Stores);
+    walk.block(&shader.body, false, 0, Pass::Stores);
     walk.serial = 0;
-    walk.block(&shader.body, false, Pass::Reads);
+    walk.block(&shader.body, false, 0, Pass::Reads);
     let Walk { candidates, refused, store_at, .. } = walk;
     candidates.into_iter().filter(|l| store_at.contains_key(l) && !refused.contains(l)).collect()
 }
@@ -87,6 +147,8 @@ struct Walk<'a> {
     serial: u32,
     path: Vec<Step>,
     store_at: FxHashMap<LocalId, Vec<Step>>,
+    /// The calls' results: their store counts as made where the call is.
+    results: FxHashSet<LocalId>,
     candidates: FxHashSet<LocalId>,
     refused: FxHashSet<LocalId>,
     /// The expressions already scanned in the current statement.
@@ -94,12 +156,17 @@ struct Walk<'a> {
 }
 
 impl Walk<'_> {
-    fn block(&mut self, block: &Block, inline: bool, pass: Pass) {
+    /// Walks `block`; `arguments` leading statements are an inlined call's parameter stores,
+    /// whose values the caller computes (their reads were checked at the call).
+    fn block(&mut self, block: &Block, inline: bool, arguments: usize, pass: Pass) {
         let serial = self.serial;
         self.serial += 1;
         for (i, stmt) in block.iter().enumerate() {
             self.path.push(Step { block: serial, index: i as u32, inline });
-            self.statement(stmt, pass);
+            // A parameter store's place counts (its value is the argument); its reads do not.
+            if i >= arguments || pass == Pass::Stores {
+                self.statement(stmt, pass);
+            }
             self.path.pop();
         }
     }
@@ -107,7 +174,15 @@ impl Walk<'_> {
     fn statement(&mut self, stmt: &Stmt, pass: Pass) {
         self.seen.clear();
         match (stmt, pass) {
-            (Stmt::Store { place: Place::Local(l), .. }, Pass::Stores) if self.candidates.contains(l) => {
+            (Stmt::Inline { body, .. }, Pass::Stores) => {
+                if let Some(r) = call_result(body, &self.candidates) {
+                    self.results.insert(r);
+                    self.store_at.insert(r, self.path.clone());
+                }
+            }
+            (Stmt::Store { place: Place::Local(l), .. }, Pass::Stores)
+                if self.candidates.contains(l) && !self.results.contains(l) =>
+            {
                 self.store_at.insert(*l, self.path.clone());
             }
             (_, Pass::Stores) => {}
@@ -131,10 +206,22 @@ impl Walk<'_> {
                     self.reads(*a);
                 }
             }
-            (Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. }, Pass::Reads) => {}
+            (Stmt::Inline { body, .. }, Pass::Reads) => {
+                for s in &body[..arguments(self.shader, body)] {
+                    if let Stmt::Store { value, .. } = s {
+                        self.reads(*value);
+                    }
+                }
+            }
+            (Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return, Pass::Reads) => {}
         }
-        let inline = matches!(stmt, Stmt::Inline { .. });
-        stmt.for_each_block(|b| self.block(b, inline, pass));
+        match stmt {
+            Stmt::Inline { body, .. } => {
+                let n = arguments(self.shader, body);
+                self.block(body, true, n, pass);
+            }
+            _ => stmt.for_each_block(|b| self.block(b, false, 0, pass)),
+        }
     }
 
     /// Checks every local `id` reads against the place of its store.

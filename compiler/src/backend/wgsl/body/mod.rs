@@ -80,6 +80,8 @@ pub(crate) struct Translator<'a> {
     values: FxHashSet<LocalId>,
     /// The value of each of them stored so far in the function being built.
     value_of: FxHashMap<LocalId, Value>,
+    /// The local whose value the function being built returns (`super::values::call_result`).
+    returning: Option<LocalId>,
 }
 
 /// A value with its language type, for the helpers that dispatch on types.
@@ -118,6 +120,7 @@ impl<'a> Translator<'a> {
             stores,
             values,
             value_of: FxHashMap::default(),
+            returning: None,
         }
     }
 
@@ -262,7 +265,13 @@ impl<'a> Translator<'a> {
             Stmt::Break(_) | Stmt::Continue(_) => {
                 return Err(self.error(self.shader.span, "`break` or `continue` out of more than one loop"));
             }
-            Stmt::Return => self.fb.push(Statement::Return { value: None }),
+            Stmt::Return => {
+                let value = match self.returning {
+                    Some(r) => Some(self.value(r, self.shader.span)?),
+                    None => None,
+                };
+                self.fb.push(Statement::Return { value });
+            }
             Stmt::Inline { function, body, .. } => self.inline(function, body)?,
             Stmt::Illuminance { args, body } => self.illuminance(args, body)?,
             Stmt::Emit { solar, args, body } => self.emission(*solar, args, body)?,
@@ -309,20 +318,69 @@ impl<'a> Translator<'a> {
         self.store(pointer, next);
     }
 
-    /// An inlined call becomes a naga function of its own, so that its `return` is naga's.
+    /// An inlined call becomes a naga function of its own, so that its `return` is naga's. Its
+    /// parameters' values are the function's arguments, computed here, and the value it stores
+    /// last, when that is a value, is its result (`super::values`).
     pub(crate) fn inline(&mut self, function: &SmolStr, body: &[Stmt]) -> Result<(), Diagnostic> {
         self.functions += 1;
         let name = format!("{}{}_{}", self.prefix, sanitize(function), self.functions);
+        let n = super::values::arguments(self.shader, body);
+        let mut parameters = Vec::with_capacity(n);
+        let mut arguments = Vec::with_capacity(n);
+        for stmt in &body[..n] {
+            let Stmt::Store { place: Place::Local(l), value, .. } = stmt else { unreachable!("an argument") };
+            arguments.push(self.expr(*value)?);
+            parameters.push(*l);
+        }
+        let result_local = super::values::call_result(body, &self.values);
         let outer = std::mem::replace(&mut self.fb, FnBuilder::new(&name));
         let memo = std::mem::take(&mut self.memo);
         let values = std::mem::take(&mut self.value_of);
-        let result = self.block(body);
+        let returning = std::mem::replace(&mut self.returning, result_local);
+        let result = self.callee(&parameters, body, n);
+        let end_value = result_local.and_then(|r| self.value_of.get(&r).copied());
         let inner = std::mem::replace(&mut self.fb, outer);
         self.memo = memo;
         self.value_of = values;
+        self.returning = returning;
         result?;
-        let handle = self.mb.module.functions.append(inner.finish(), Span::UNDEFINED);
-        self.fb.push(Statement::Call { function: handle, arguments: Vec::new(), result: None });
+        let mut f = inner.finish();
+        if let Some(r) = result_local {
+            if !matches!(body.last(), Some(Stmt::Return)) {
+                f.body.push(Statement::Return { value: end_value }, Span::UNDEFINED);
+            }
+            let ty = self.mb.ty(self.shader.local(r).ty, false);
+            f.result = Some(naga::FunctionResult { ty, binding: None });
+        }
+        let handle = self.mb.module.functions.append(f, Span::UNDEFINED);
+        let call_result = result_local.map(|r| {
+            let h = self.fb.add_unemitted(Expression::CallResult(handle));
+            self.value_of.insert(r, h);
+            h
+        });
+        self.fb.push(Statement::Call { function: handle, arguments, result: call_result });
+        Ok(())
+    }
+
+    /// The body of an inlined call, in its own function: its parameters from the arguments, then
+    /// the statements after their stores.
+    fn callee(&mut self, parameters: &[LocalId], body: &[Stmt], n: usize) -> Result<(), Diagnostic> {
+        for (i, &l) in parameters.iter().enumerate() {
+            let ty = self.mb.ty(self.shader.local(l).ty, false);
+            let name = self.names[&l].clone();
+            self.fb.f.arguments.push(naga::FunctionArgument { name: Some(name), ty, binding: None });
+            let argument = self.fb.add(Expression::FunctionArgument(i as u32));
+            if self.values.contains(&l) {
+                self.value_of.insert(l, argument);
+            } else {
+                let g = self.local_var(l);
+                let p = self.pointer(g);
+                self.store(p, argument);
+            }
+        }
+        for i in n..body.len() {
+            self.statement(&body[i], i.checked_sub(1).map(|j| &body[j]))?;
+        }
         Ok(())
     }
 

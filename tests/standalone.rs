@@ -80,6 +80,8 @@ fn pack(interface: &Interface, values: &UserValues) -> Vec<u8> {
                 let given = values.lights[*light].iter().find(|(n, _)| n == name).map(|(_, v)| v.clone());
                 in_camera(&p.ty, &given.or(p.default.clone()).expect("a value or a default"), values.view)
             }
+            // A noise's permutation or gradients: the same values every draw.
+            UniformSource::Table { values } => values.clone(),
             other => panic!("this user program does not fill {other:?}"),
         };
         let l = &field.layout;

@@ -215,6 +215,11 @@ fn describe(source: &UniformSource) -> String {
             }
             other => format!("the geometry matrix {other:?}"),
         },
+        UniformSource::Table { values } => format!(
+            "a constant table of the shader ({} values: a noise's permutation or gradients); always \
+             the constant of the same name in [`tables`]",
+            values.len()
+        ),
         other => format!("{other:?}"),
     }
 }
@@ -470,6 +475,8 @@ pub(crate) fn module(
     }
     let _ = writeln!(out, "{i}}}");
 
+    tables(&mut out, interface, &members);
+
     doc(&mut out, i, "The uniform block's members, in order (padding left out).");
     let _ = writeln!(out, "{i}pub const FIELDS: &[super::UniformFieldInfo] = &[");
     for m in &members {
@@ -498,6 +505,36 @@ pub(crate) fn module(
     let _ = writeln!(out, "{i}}};");
     let _ = writeln!(out, "}}");
     Ok(out)
+}
+
+/// The module `tables`: for each constant table in the block, a constant of the member's type
+/// and name holding its values as the block lays them out (each element padded to 16 bytes).
+fn tables(out: &mut String, interface: &Interface, members: &[Member]) {
+    let i = "    ";
+    doc(out, i, "The values of the uniform block's constant tables, one constant per member of that name.");
+    let _ = writeln!(out, "{i}pub mod tables {{");
+    for m in members {
+        let Some(k) = m.field else { continue };
+        let f = &interface.uniforms[k];
+        let UniformSource::Table { values } = &f.source else { continue };
+        let per = (f.layout.element_stride / 4).max(1) as usize;
+        let word = |x: Option<&f64>| match (f.layout.scalar, x) {
+            (ScalarKind::F32, Some(x)) => format!("{:?}", *x as f32),
+            (ScalarKind::F32, None) => "0.0".into(),
+            (_, Some(x)) => format!("{}", *x as i64),
+            (_, None) => "0".into(),
+        };
+        let elements: Vec<String> = values
+            .iter()
+            .map(|x| {
+                let words: Vec<String> = (0..per).map(|w| word((w == 0).then_some(x))).collect();
+                if per == 1 { words.join("") } else { format!("[{}]", words.join(", ")) }
+            })
+            .collect();
+        doc(out, "        ", &format!("The values of `Uniforms::{}`.", m.ident.trim_start_matches("r#")));
+        let _ = writeln!(out, "{i}    pub const {}: {} = [{}];", m.ident, m.ty.render(), elements.join(", "));
+    }
+    let _ = writeln!(out, "{i}}}");
 }
 
 #[cfg(test)]

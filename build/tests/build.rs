@@ -141,12 +141,15 @@ fn generated_structs_lay_out_the_example_shaders_blocks() {
                 assert_eq!(*name, field.name, "{}", b.module);
                 assert_eq!(at, field.offset as usize, "{}: offset of {name}", b.module);
                 assert!(size_of_type(ty) >= field.layout.size() as usize, "{}: {name}: {ty}", b.module);
-                let expected = match field.layout.components {
-                    1 => "f32|i32|u32",
-                    3 => "[f32; 3]",
-                    4 => "[f32; 4]",
-                    16 => "[[f32; 4]; 4]",
-                    _ => "",
+                let n = field.layout.elements;
+                let expected = match (field.layout.components, n) {
+                    // An array of scalars (a constant table): each element padded to 16 bytes.
+                    (1, 2..) => format!("[[f32; 4]; {n}]|[[i32; 4]; {n}]|[[u32; 4]; {n}]"),
+                    (1, _) => "f32|i32|u32".into(),
+                    (3, _) => "[f32; 3]".into(),
+                    (4, _) => "[f32; 4]".into(),
+                    (16, _) => "[[f32; 4]; 4]".into(),
+                    _ => String::new(),
                 };
                 assert!(expected.split('|').any(|e| e == *ty), "{}: {name}: {ty} for {field:?}", b.module);
             }
@@ -170,6 +173,15 @@ fn generated_structs_lay_out_the_example_shaders_blocks() {
             assert!(!interface.needs_host, "{}", b.module);
         }
     }
+    // A constant table's values are a constant of the member's name, padded as the block is:
+    // planet's improved noise reads Perlin's permutation (151, 160, 137, ...).
+    let planet = &rust[rust.find("pub mod planet {").unwrap()..];
+    assert!(
+        planet.contains(
+            "pub const perlin_p: [[i32; 4]; 256] = [[151, 0, 0, 0], [160, 0, 0, 0], [137, 0, 0, 0],"
+        ),
+        "planet's permutation table"
+    );
     // A host field says how to fill it.
     let plastic = &rust[rust.find("pub mod plastic {").unwrap()..];
     assert!(plastic.contains("computed by the shader's host part (its output `Ci_h`)"));

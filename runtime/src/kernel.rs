@@ -132,12 +132,19 @@ pub fn run_prepared(
         .map_err(|_| GpuError::InvalidInput(format!("{count} points")))?;
     let mut uniforms = vec![0u8; kernel.uniform_size as usize];
     for field in &kernel.uniforms {
-        if let UniformSource::Space { name, inverse, .. } = &field.source {
-            let m =
-                resources.spaces.iter().find(|(n, _)| n == name).map_or(glam::Mat4::IDENTITY, |(_, m)| *m);
-            let m = if *inverse { m.inverse() } else { m };
-            let values: Vec<f64> = m.to_cols_array().iter().map(|x| f64::from(*x)).collect();
-            field.write(&mut uniforms, &values);
+        match &field.source {
+            UniformSource::Space { name, inverse, .. } => {
+                let m = resources
+                    .spaces
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map_or(glam::Mat4::IDENTITY, |(_, m)| *m);
+                let m = if *inverse { m.inverse() } else { m };
+                let values: Vec<f64> = m.to_cols_array().iter().map(|x| f64::from(*x)).collect();
+                field.write(&mut uniforms, &values);
+            }
+            UniformSource::Table { values } => field.write(&mut uniforms, values),
+            _ => {}
         }
     }
     let bytes = gpu.compute_textured(

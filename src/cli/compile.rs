@@ -132,6 +132,9 @@ fn imager(args: &CompileArgs, name: &str) -> Result<ExitCode, String> {
         "workgroup_size": KERNEL_WORKGROUP,
         "input": {"group": 0, "binding": 1, "stride": kernel.input_stride, "values": values(&kernel.inputs)},
         "output": {"group": 0, "binding": 2, "stride": kernel.output_stride, "values": values(&kernel.outputs)},
+        // The named spaces' matrices and the constant tables (a noise's permutation), laid out
+        // as a surface's uniform block is (docs/interface.md); no block when `size` is 0.
+        "uniforms": {"group": 0, "binding": 0, "size": kernel.uniform_size, "fields": kernel.uniforms},
     });
     let json = serde_json::to_string_pretty(&json).map_err(|e| e.to_string())?;
     write_outputs(&args.output, name, &wgsl, &json)

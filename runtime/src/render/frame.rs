@@ -183,6 +183,7 @@ pub fn uniform_value(
             GeometryMatrix::CameraToClip => frame.camera_to_clip,
             other => return Err(missing(format!("geometry matrix {other:?}"))),
         }),
+        UniformSource::Table { values } => values.clone(),
         other => return Err(missing(format!("{other:?}"))),
     })
 }

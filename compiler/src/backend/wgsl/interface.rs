@@ -18,7 +18,7 @@
 use serde::{Deserialize, Serialize};
 
 /// The version of the interface's JSON form; it changes whenever a field changes meaning.
-pub const INTERFACE_VERSION: u32 = 1;
+pub const INTERFACE_VERSION: u32 = 2;
 
 /// Where the value of a uniform field comes from.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -70,6 +70,14 @@ pub enum UniformSource {
     Geometry {
         /// Which.
         matrix: GeometryMatrix,
+    },
+    /// A constant table of the program (a noise's permutation or gradients): always `values`,
+    /// element by element. It lives in the block because a driver compiles indexed reads of a
+    /// buffer far faster than of a module variable (docs/performance.md);
+    /// [`Interface::blank_block`] writes every one.
+    Table {
+        /// The elements.
+        values: Vec<f64>,
     },
 }
 
@@ -400,6 +408,18 @@ impl Default for Interface {
 }
 
 impl Interface {
+    /// A uniform block of [`Interface::uniform_size`] bytes holding the constant tables
+    /// ([`UniformSource::Table`]) and zeros elsewhere: the start of every block a host fills.
+    pub fn blank_block(&self) -> Vec<u8> {
+        let mut block = vec![0u8; self.uniform_size as usize];
+        for field in &self.uniforms {
+            if let UniformSource::Table { values } = &field.source {
+                field.write(&mut block, values);
+            }
+        }
+        block
+    }
+
     /// The uniform field whose value is `source`.
     pub fn uniform(&self, source: &UniformSource) -> Option<&UniformField> {
         self.uniforms.iter().find(|f| f.source == *source)

@@ -81,7 +81,7 @@ pub fn compile_kernel(
     inputs: &[&str],
     outputs: &[&str],
 ) -> Result<Kernel, Diagnostic> {
-    let mut mb = ModuleBuilder::new();
+    let mut mb = ModuleBuilder::without_uniform_tables();
     let mut t = Translator::new(&mut mb, shader, "", lights, strings, "body");
     t.block(&shader.body)?;
     let body_fn = std::mem::replace(&mut t.fb, FnBuilder::new("")).finish();

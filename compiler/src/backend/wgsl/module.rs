@@ -25,6 +25,10 @@ pub(crate) struct ModuleBuilder {
     textures: Vec<(String, naga::ImageDimension, u32, Handle<GlobalVariable>)>,
     /// Constant tables by type and contents (`tables.rs`).
     pub(super) tables: FxHashMap<(Type, Vec<u64>), Handle<GlobalVariable>>,
+    /// The uniform block's bytes taken by tables so far, and the most they may take
+    /// (`tables.rs`).
+    table_bytes: u32,
+    table_budget: u32,
 }
 
 /// A naga scalar for the language's scalar bases.
@@ -71,7 +75,15 @@ impl ModuleBuilder {
             uniforms: Vec::new(),
             textures: Vec::new(),
             tables: FxHashMap::default(),
+            table_bytes: 0,
+            table_budget: super::tables::TABLE_BUDGET,
         }
+    }
+
+    /// A builder whose tables all stay module variables: for kernels, whose callers bind no
+    /// uniform block unless a shader reads a named space.
+    pub fn without_uniform_tables() -> Self {
+        ModuleBuilder { table_budget: 0, ..ModuleBuilder::new() }
     }
 
     /// The variable of texture `name`, if declared.
@@ -181,9 +193,9 @@ impl ModuleBuilder {
         h
     }
 
-    /// The index of the uniform member for `source`, added on first use.
+    /// The index of the uniform member for `source` of type `t`, added on first use.
     pub fn uniform(&mut self, name: &str, t: Type, source: UniformSource) -> u32 {
-        if let Some(i) = self.uniforms.iter().position(|(_, _, s)| *s == source) {
+        if let Some(i) = self.uniforms.iter().position(|(_, ty, s)| *s == source && *ty == t) {
             return i as u32;
         }
         let mut unique = sanitize(name);
@@ -194,6 +206,19 @@ impl ModuleBuilder {
         }
         self.uniforms.push((unique, t, source));
         (self.uniforms.len() - 1) as u32
+    }
+
+    /// The uniform member for a table's `source` of type `t`, taking `bytes` of the tables'
+    /// budget when it is new; `None` when it does not fit.
+    pub fn uniform_table(&mut self, name: &str, t: Type, source: UniformSource, bytes: u32) -> Option<u32> {
+        let known = self.uniforms.iter().any(|(_, ty, s)| *s == source && *ty == t);
+        if !known {
+            if self.table_bytes + bytes > self.table_budget {
+                return None;
+            }
+            self.table_bytes += bytes;
+        }
+        Some(self.uniform(name, t, source))
     }
 
     /// Lays out the uniform block (std140-like rules, as WGSL's uniform address space requires)

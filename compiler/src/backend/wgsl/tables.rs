@@ -12,10 +12,19 @@
 //! hashed index (Perlin's 1985 noise: 768 floats), which nothing can fold, and composing it at
 //! every call is what the driver cannot afford: one `perlin_noise3` took lavapipe 3.2 s to
 //! compile that way (runtime/benches/pipelines.rs, docs/performance.md).
+//!
+//! A table that is only ever indexed (never read whole) and whose elements are numbers lives in
+//! the uniform block instead, while the block's tables fit [`TABLE_BUDGET`]: lavapipe compiles an
+//! indexed read of a module variable's array at a cost that grows with the array (about 5 ms per
+//! read of a 256-entry table), and one of a buffer at about a quarter of that, whatever its
+//! length. `noise_panel`'s 306 permutation reads took its pipeline creation from 2.5 s to 1.4 s
+//! that way. The host writes the values ([`UniformSource::Table`],
+//! `Interface::blank_block`).
 
 use naga::{Expression, Handle, Literal as NLit, Span};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
+use super::interface::UniformSource;
 use super::module::ModuleBuilder;
 use crate::ir::types::{Base, Frequency, Type};
 use crate::ir::{ExprId, ExprKind, Literal, LocalId, Shader, UnaryOp};
@@ -23,11 +32,24 @@ use crate::ir::{ExprId, ExprKind, Literal, LocalId, Shader, UnaryOp};
 /// A table's element values, as naga literals (their bits identify the table).
 pub(crate) type Contents = Vec<NLit>;
 
+/// A constant table: its contents, and whether it may live in the uniform block.
+pub(crate) struct Table {
+    pub contents: Contents,
+    /// Whether every read indexes it and its elements are numbers (the block holds no booleans).
+    pub indexed_only: bool,
+}
+
 /// The fewest elements of a float table that is shared (see the module's comment).
 pub(crate) const SHARED_FLOAT_TABLE: u32 = 64;
 
+/// The most bytes of the uniform block that tables take (each element is padded to 16 bytes, as
+/// the block's arrays are): half of the 64 KiB every WebGPU device binds, leaving the rest to
+/// parameters. `noise_panel`'s tables take 9 KiB.
+pub(crate) const TABLE_BUDGET: u32 = 32 * 1024;
+
 /// The locals of `shader` that are constant tables, with their contents.
-pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
+pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Table> {
+    let whole = read_whole(shader);
     crate::ir::stores::stores(shader)
         .iter()
         .zip(&shader.locals)
@@ -42,7 +64,31 @@ pub(crate) fn find(shader: &Shader) -> FxHashMap<LocalId, Contents> {
             let ExprKind::Construct(parts) = &shader.expr(value).kind else { return None };
             let contents: Option<Contents> =
                 parts.iter().map(|&p| literal(shader, p, local.ty.base)).collect();
-            contents.filter(|c| c.len() as u32 == local.ty.array.unwrap_or(0)).map(|c| (LocalId(i as u32), c))
+            let l = LocalId(i as u32);
+            let indexed_only = local.ty.base != Base::Bool && !whole.contains(&l);
+            contents
+                .filter(|c| c.len() as u32 == local.ty.array.unwrap_or(0))
+                .map(|contents| (l, Table { contents, indexed_only }))
+        })
+        .collect()
+}
+
+/// The locals some expression of `shader` reads whole: as a value, not as the array an index
+/// reads from.
+fn read_whole(shader: &Shader) -> FxHashSet<LocalId> {
+    let mut indexed = FxHashSet::default();
+    for e in &shader.exprs {
+        if let ExprKind::Index(base, _) = e.kind {
+            indexed.insert(base);
+        }
+    }
+    shader
+        .exprs
+        .iter()
+        .enumerate()
+        .filter_map(|(i, e)| match e.kind {
+            ExprKind::Local(l) if !indexed.contains(&ExprId(i as u32)) => Some(l),
+            _ => None,
         })
         .collect()
 }
@@ -83,6 +129,17 @@ fn value(shader: &Shader, id: ExprId) -> Option<Literal> {
 }
 
 impl ModuleBuilder {
+    /// The uniform block's member holding `table` (of type `ty`), when it may live there and
+    /// fits the budget; otherwise it is [`ModuleBuilder::table`]'s variable.
+    pub(crate) fn table_member(&mut self, name: &str, ty: Type, table: &Table) -> Option<u32> {
+        if !table.indexed_only {
+            return None;
+        }
+        let values: Vec<f64> = table.contents.iter().map(value_of).collect();
+        let bytes = 16 * table.contents.len() as u32;
+        self.uniform_table(name, ty, UniformSource::Table { values }, bytes)
+    }
+
     /// The private variable initialized with `contents` (of type `ty`), made on first use and
     /// shared by every table with the same contents.
     pub(crate) fn table(
@@ -117,6 +174,17 @@ impl ModuleBuilder {
         );
         self.tables.insert(key, h);
         h
+    }
+}
+
+/// A table element as the interface writes it.
+fn value_of(l: &NLit) -> f64 {
+    match *l {
+        NLit::F32(x) => f64::from(x),
+        NLit::I32(i) => f64::from(i),
+        NLit::U32(u) => f64::from(u),
+        NLit::Bool(b) => f64::from(u8::from(b)),
+        _ => 0.0,
     }
 }
 

@@ -99,12 +99,47 @@ fn kernels_validate_and_lay_out_their_records() {
     assert!(super::compile_kernel(&shader, &[], &[], &["nope"], &["Ci"]).is_err());
 }
 
+/// A shader whose `pick` reads a constant table at a varying index, called three times.
+const TABLE_SHADER: &str = "float pick(float i) { constant int table[4] = {5, -25, 2, -3}; return table[int(i)]; }\n\
+                            surface t() { Ci = color(pick(s), pick(t), pick(s + t)); }";
+
 #[test]
-fn a_constant_integer_table_is_one_initialized_variable_shared_by_its_calls() {
-    let src = "float pick(float i) { constant int table[4] = {5, -25, 2, -3}; return table[int(i)]; }\n\
-               surface t() { Ci = color(pick(s), pick(t), pick(s + t)); }";
-    let p = program(src, None);
-    let module = &p.module;
+fn a_constant_table_is_one_uniform_member_shared_by_its_calls() {
+    let p = program(TABLE_SHADER, None);
+    let tables: Vec<_> = p
+        .interface
+        .uniforms
+        .iter()
+        .filter_map(|f| match &f.source {
+            super::interface::UniformSource::Table { values } => Some((f, values.clone())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(tables.len(), 1, "one table for three calls: {:?}", p.interface.uniforms);
+    let (field, values) = &tables[0];
+    assert_eq!(values, &[5.0, -25.0, 2.0, -3.0]);
+    assert_eq!((field.ty.as_str(), field.layout.element_stride), ("int[4]", 16));
+    // The host's blank block holds the values, one per 16 bytes.
+    let block = p.interface.blank_block();
+    let word = |k: u32| {
+        let at = (field.offset + 16 * k) as usize;
+        i32::from_le_bytes(block[at..at + 4].try_into().unwrap())
+    };
+    assert_eq!([word(0), word(1), word(2), word(3)], [5, -25, 2, -3]);
+    assert!(p.module.global_variables.iter().all(|(_, g)| g.init.is_none()), "no module variable holds it");
+    let wgsl = p.wgsl().unwrap();
+    assert!(!wgsl.contains("table = array"), "no store of the table:\n{wgsl}");
+    naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{}\n{wgsl}", e.emit_to_string(&wgsl)));
+}
+
+#[test]
+fn a_kernels_constant_table_is_one_initialized_variable_shared_by_its_calls() {
+    let checked = crate::check_source("k.sl", TABLE_SHADER, &MemoryLoader::default());
+    let mut shader = checked.program.shaders[0].clone();
+    crate::opt::prepare(&mut shader);
+    let k = super::compile_kernel(&shader, &[], &[], &["s", "t"], &["Ci"]).unwrap();
+    assert_eq!(k.uniform_size, 0, "a kernel binds no uniform block for its tables");
+    let module = &k.module;
     let tables: Vec<_> = module.global_variables.iter().filter(|(_, g)| g.init.is_some()).collect();
     assert_eq!(tables.len(), 1, "one table for three calls");
     let (_, g) = tables[0];
@@ -119,7 +154,18 @@ fn a_constant_integer_table_is_one_initialized_variable_shared_by_its_calls() {
         })
         .collect();
     assert_eq!(values, [5, -25, 2, -3]);
-    let wgsl = p.wgsl().unwrap();
-    assert!(!wgsl.contains("table = array"), "no store of the table:\n{wgsl}");
-    naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{}\n{wgsl}", e.emit_to_string(&wgsl)));
+}
+
+#[test]
+fn a_table_read_whole_stays_a_module_variable() {
+    let src = "float pick(float i) { constant int table[4] = {5, -25, 2, -3}; int copy[4] = table; \
+               copy[0] = int(i); return copy[int(i) + 1]; }\n\
+               surface t() { Ci = color(pick(s), pick(t), 0); }";
+    let p = program(src, None);
+    let sources: Vec<_> = p.interface.uniforms.iter().map(|f| &f.source).collect();
+    assert!(
+        !sources.iter().any(|s| matches!(s, super::interface::UniformSource::Table { .. })),
+        "{sources:?}"
+    );
+    assert_eq!(p.module.global_variables.iter().filter(|(_, g)| g.init.is_some()).count(), 1);
 }

@@ -83,6 +83,20 @@ impl Translator<'_> {
                 let from = self.shader.expr(*value).ty;
                 self.space_to_current(space, v, from, span)?
             }
+            ExprKind::Index(base, index) if let Some(member) = self.uniform_table(*base) => {
+                // Element `i` of a table in the uniform block: `u.table[i].x` (its elements are
+                // padded to vec4s).
+                let bt = self.shader.expr(*base).ty;
+                let i = match self.constant_index(*index, bt) {
+                    Some(c) => self.fb.add(Expression::Literal(NLit::U32(c))),
+                    None => self.index(*index, bt)?,
+                };
+                let block = self.fb.add(Expression::GlobalVariable(self.mb.uniform_var));
+                let array = self.fb.add(Expression::AccessIndex { base: block, index: member });
+                let element = self.fb.add(Expression::Access { base: array, index: i });
+                let x = self.fb.add(Expression::AccessIndex { base: element, index: 0 });
+                self.load(x)
+            }
             ExprKind::Index(base, index) => {
                 let bt = self.shader.expr(*base).ty;
                 if let Some(c) = self.constant_index(*index, bt) {

@@ -43,7 +43,7 @@ use super::module::{ModuleBuilder, sanitize};
 use crate::backend::cpu::LightBinding;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
-use crate::ir::{ExprId, LocalId, Place, Shader, Stmt};
+use crate::ir::{ExprId, ExprKind, LocalId, Place, Shader, Stmt};
 use crate::source::Span as SrcSpan;
 
 /// Translates one program's statements into naga functions of a module.
@@ -72,8 +72,9 @@ pub(crate) struct Translator<'a> {
     pub random_sites: u32,
     names: FxHashMap<LocalId, String>,
     functions: u32,
-    /// The constant tables among the locals, which live in initialized module variables.
-    tables: FxHashMap<LocalId, super::tables::Contents>,
+    /// The constant tables among the locals, which live in the uniform block or in initialized
+    /// module variables (`super::tables`).
+    tables: FxHashMap<LocalId, super::tables::Table>,
     /// The stores into each local (for loops' trip counts and the values).
     stores: Vec<crate::ir::stores::Stores>,
     /// The locals that are values, not variables (`super::values`).
@@ -138,13 +139,22 @@ impl<'a> Translator<'a> {
         debug_assert!(!self.values.contains(&l), "local {l:?} is a value, not a variable");
         let local = self.shader.local(l);
         let mut name = self.names[&l].clone();
-        if let Some(contents) = self.tables.get(&l) {
-            return self.mb.table(&name, local.ty, contents);
+        if let Some(table) = self.tables.get(&l) {
+            // Reached only for a table read whole, which stays a module variable.
+            return self.mb.table(&name, local.ty, &table.contents);
         }
         if local.rate.perlight {
             name = format!("{name}_L{}", self.light.unwrap_or(0));
         }
         self.mb.private(&name, local.ty)
+    }
+
+    /// The uniform block's member holding the table `base` reads, when it is a table placed there.
+    pub(crate) fn uniform_table(&mut self, base: ExprId) -> Option<u32> {
+        let ExprKind::Local(l) = self.shader.expr(base).kind else { return None };
+        let table = self.tables.get(&l)?;
+        let ty = self.shader.local(l).ty;
+        self.mb.table_member(&self.names[&l], ty, table)
     }
 
     /// The private variable holding predefined variable `name` (per light for per-light ones).

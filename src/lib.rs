@@ -53,6 +53,7 @@ pub use facade::{
     CompileError, Compiled, Compiler, Diagnostics, FileWatcher, Light, UniformError, Uniforms, Update, Value,
     View, WatchError, Watcher,
 };
+pub use patina_compiler::backend::wgsl::Lowering;
 pub use patina_compiler::backend::wgsl::interface::{self, Interface};
 pub use patina_runtime::camera::Camera;
 

@@ -50,8 +50,10 @@ fn set_all(shader: &ShaderRef, mut set: impl FnMut(&str, Value) -> Result<(), pa
 
 fn check_scene(path: &Path) -> usize {
     let scene = Scene::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let prepared = render::prepare_with(&scene, Options { specialize: false })
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    // The facade compiles in the fast lowering by default: the renderer compiles the same module.
+    let options = Options { specialize: false, lowering: patina::Lowering::Fast };
+    let prepared =
+        render::prepare_with(&scene, options).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let mut compared = 0;
     for (i, (object, drawn)) in scene.objects.iter().zip(&prepared.objects).enumerate() {
         let mut compiler = Compiler::new();

@@ -53,7 +53,7 @@ fn bench(c: &mut Criterion) {
         let s = scene(lights);
         let mut measured = Vec::new();
         for specialize in [true, false] {
-            let p = render::prepare_with(&s, Options { specialize }).unwrap();
+            let p = render::prepare_with(&s, Options { specialize, ..Options::default() }).unwrap();
             let label = format!("{lights} light(s), {}", if specialize { "specialized" } else { "dynamic" });
             let wgsl = p.objects[0].surface.gpu.wgsl().unwrap().len();
             let mut group = c.benchmark_group("binding");

@@ -50,7 +50,8 @@ fn scene(params: &str, lights: usize) -> Scene {
 }
 
 fn prepared(scene: &Scene, specialize: bool) -> Prepared {
-    render::prepare_with(scene, Options { specialize }).unwrap_or_else(|e| panic!("{e}"))
+    render::prepare_with(scene, Options { specialize, ..Options::default() })
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The CPU reference's image and, with a GPU, the GPU's.

@@ -23,6 +23,7 @@ mod harness;
 use cases::{Case, Dom, R2, UNIT, declare, mixes, sample, tol};
 use harness::{Input, Spec, Tol};
 use patina_compiler::backend::cpu::LightBinding;
+use patina_compiler::backend::wgsl::Lowering;
 use patina_runtime::gpu::{self, Gpu};
 
 // -------------------------------------------------------------------------------------------------
@@ -96,9 +97,21 @@ const POINTS: usize = 64;
 
 /// Runs a group of cases on both backends.
 fn run_cases(cases: &[Case], lights: &[LightBinding]) {
+    run_lowered(cases, lights, Lowering::Exact);
+}
+
+/// Runs a group of cases on both backends, the GPU's kernel written in `lowering`; in the fast
+/// lowering every output is held to [`fast_tolerance`] instead of its own.
+fn run_lowered(cases: &[Case], lights: &[LightBinding], lowering: Lowering) {
     let Some(gpu) = gpu::for_tests() else { return };
-    let (src, outputs) = shader(cases);
-    let spec = Spec { src, lights: lights.to_vec(), batches: BATCHES, points: POINTS, outputs, related };
+    let (src, mut outputs) = shader(cases);
+    if lowering == Lowering::Fast {
+        for (_, tol) in &mut outputs {
+            *tol = fast_tolerance(*tol);
+        }
+    }
+    let spec =
+        Spec { src, lights: lights.to_vec(), batches: BATCHES, points: POINTS, outputs, related, lowering };
     let values = |input: &Input| {
         let dom = match case_domain(cases, input.name) {
             Some(dom) => {
@@ -124,12 +137,48 @@ fn run_shader(gpu: &Gpu, src: &str, lights: &[LightBinding], outputs: &[(&str, T
         points: POINTS,
         outputs: outputs.iter().map(|(n, t)| (n.to_string(), *t)).collect(),
         related: |_| String::new(),
+        lowering: Lowering::Exact,
     };
     harness::run(gpu, &spec, &|input| sample(default_domain(input.name), input));
 }
 
+/// What the fast lowering may differ by: its built-ins (`dot`, `length`, `normalize`,
+/// `reflect`, matrix products, `inverseSqrt`, `sign`) round as the driver's instructions do (a
+/// multiply-add may be fused, a reciprocal square root approximated), so a result may move by a
+/// few ulp of its largest term. The cases' arguments are at most 4 in magnitude (or, for
+/// `length`, anything, where the relative bound holds), so `FAST_ABS` bounds the cancellation
+/// in a sum of products; integer and boolean results must still be the same bits.
+fn fast_tolerance(exact: Tol) -> Tol {
+    match exact {
+        Tol::Int => Tol::Int,
+        Tol::Near { abs, rel } => Tol::Near { abs: abs.max(FAST_ABS), rel: rel.max(FAST_REL) },
+        _ => Tol::Near { abs: FAST_ABS, rel: FAST_REL },
+    }
+}
+
+/// See [`fast_tolerance`].
+const FAST_ABS: f64 = 2e-5;
+/// See [`fast_tolerance`].
+const FAST_REL: f64 = 2e-6;
+
 // -------------------------------------------------------------------------------------------------
 // Tests.
+
+/// The built-ins the fast lowering writes differently, and everything built on them, in the fast
+/// lowering: within [`fast_tolerance`] of the interpreter.
+#[test]
+fn fast_lowering_geometry_and_exact_math() {
+    run_lowered(&cases::exact_math(), &[], Lowering::Fast);
+    run_lowered(&cases::geometric_functions(), &[], Lowering::Fast);
+    run_lowered(&cases::stanford_vector_functions_and_select(), &[], Lowering::Fast);
+}
+
+/// As [`fast_lowering_geometry_and_exact_math`]: spaces, matrices and the light sums.
+#[test]
+fn fast_lowering_transformations_and_light_sums() {
+    run_lowered(&cases::transformations_and_matrices(), &[], Lowering::Fast);
+    run_lowered(&cases::light_sums(), &cases::light_sum_lights(), Lowering::Fast);
+}
 
 #[test]
 fn trigonometry_and_exponentials() {

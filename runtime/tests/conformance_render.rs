@@ -514,8 +514,8 @@ fn render_both(gpu: &Gpu, dir: &Path, scene: &str) -> (Prepared, Image, Image) {
     // results 1 ulp apart in colour conversions, splines and matrix products, and mod(x, 0) giving
     // x where the reference computes x - 0 * floor(x / 0), NaN), so a specialized program matches
     // the reference within image tolerances, not bit for bit.
-    let prepared =
-        render::prepare_with(&scene, Options { specialize: false }).unwrap_or_else(|e| panic!("{e}"));
+    let prepared = render::prepare_with(&scene, Options { specialize: false, ..Options::default() })
+        .unwrap_or_else(|e| panic!("{e}"));
     let t1 = Instant::now();
     let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{e}"));
     let t2 = Instant::now();

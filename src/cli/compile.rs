@@ -176,7 +176,7 @@ fn surface_source(spec: Option<&str>) -> Result<(String, String, Option<String>)
 }
 
 pub fn run(args: CompileArgs) -> Result<ExitCode, String> {
-    let mut compiler = Compiler::new().fold_host(args.fold_host);
+    let mut compiler = Compiler::new().fold_host(args.fold_host).lowering(args.lowering.into());
     for dir in &args.include {
         compiler = compiler.include_dir(dir);
     }

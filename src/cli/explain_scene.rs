@@ -12,8 +12,10 @@ use patina_runtime::scene::Scene;
 
 pub fn run(path: &std::path::Path) -> Result<ExitCode, String> {
     let scene = Scene::load(path).map_err(|e| e.to_string())?;
-    let bound = render::prepare_with(&scene, Options { specialize: true }).map_err(|e| e.to_string())?;
-    let dynamic = render::prepare_with(&scene, Options { specialize: false }).map_err(|e| e.to_string())?;
+    let bound = render::prepare_with(&scene, Options { specialize: true, ..Options::default() })
+        .map_err(|e| e.to_string())?;
+    let dynamic = render::prepare_with(&scene, Options { specialize: false, ..Options::default() })
+        .map_err(|e| e.to_string())?;
     print!("{}", report(&scene, &bound, &dynamic));
     Ok(ExitCode::SUCCESS)
 }

@@ -60,7 +60,7 @@ pub fn run(args: GalleryArgs) -> Result<ExitCode, String> {
             .map(|path| {
                 let name = path.file_stem().map_or("scene".into(), |s| s.to_string_lossy().into_owned());
                 let caption = caption(path);
-                let result = measure(path, &name, &args.images, gpu.as_ref(), &|backend, render| {
+                let result = measure(path, &name, &args, gpu.as_ref(), &|backend, render| {
                     sweep.set_message(format!("{name} ({backend})"));
                     let result = render(&RenderBar::new(bars, backend));
                     sweep.inc(1);
@@ -113,13 +113,14 @@ pub fn run(args: GalleryArgs) -> Result<ExitCode, String> {
 fn measure(
     path: &Path,
     name: &str,
-    images: &Path,
+    args: &GalleryArgs,
     gpu: Option<&Gpu>,
     shown: &WithBar<'_>,
 ) -> Result<Measured, String> {
     let scene = Scene::load(path).map_err(|e| e.to_string())?;
     let started = Instant::now();
-    let prepared = render::prepare(&scene).map_err(|e| e.to_string())?;
+    let options = render::Options { lowering: args.lowering.into(), ..render::Options::default() };
+    let prepared = render::prepare_with(&scene, options).map_err(|e| e.to_string())?;
     let compile = started.elapsed();
     let timed = |backend: Backend, label: &'static str| -> Rendered {
         shown(label, &|progress| {
@@ -138,7 +139,7 @@ fn measure(
         None => None,
     };
     let shown = gpu_render.as_ref().map_or(&cpu_image, |(image, _)| image);
-    let png = images.join(format!("{name}.png"));
+    let png = args.images.join(format!("{name}.png"));
     shown.write_png(&png).map_err(|e| e.to_string())?;
     Ok(Measured {
         width: shown.width,

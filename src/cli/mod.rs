@@ -161,6 +161,10 @@ pub struct GalleryArgs {
     /// A Markdown page to write, showing every picture with its command and timings.
     #[arg(long, value_name = "FILE")]
     markdown: Option<PathBuf>,
+    /// How the GPU module writes the built-ins: `exact` (the CPU reference's bits, what the
+    /// comparison is for) or `fast` (WGSL's own).
+    #[arg(long, value_enum, default_value_t = LoweringChoice::Exact)]
+    lowering: LoweringChoice,
 }
 
 /// Arguments of `patina compile`.
@@ -188,12 +192,33 @@ pub struct CompileArgs {
     /// without Patina can fill (parameters, predefined variables, spaces, geometry).
     #[arg(long)]
     fold_host: bool,
+    /// How the WGSL writes the built-ins: `fast` (WGSL's own) or `exact` (the CPU reference's bits).
+    #[arg(long, value_enum, default_value_t = LoweringChoice::Fast)]
+    lowering: LoweringChoice,
     /// Where to write NAME.wgsl and NAME.json.
     #[arg(short, long, value_name = "DIR", default_value = ".")]
     output: PathBuf,
     /// A directory to search for `#include` files.
     #[arg(short = 'I', value_name = "DIR")]
     include: Vec<PathBuf>,
+}
+
+/// How the GPU module writes the built-ins (`--lowering`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LoweringChoice {
+    /// The CPU reference's operations in its order: bit-exact against it where WGSL is exact.
+    Exact,
+    /// WGSL's own built-ins (dot, normalize, inverseSqrt, matrix products), as hand-written WGSL.
+    Fast,
+}
+
+impl From<LoweringChoice> for patina_compiler::backend::wgsl::Lowering {
+    fn from(choice: LoweringChoice) -> Self {
+        match choice {
+            LoweringChoice::Exact => Self::Exact,
+            LoweringChoice::Fast => Self::Fast,
+        }
+    }
 }
 
 /// Which renderer `patina render` uses.
@@ -219,6 +244,10 @@ pub struct RenderArgs {
     /// Compile every parameter dynamic (as uniforms) instead of binding the scene's values.
     #[arg(long)]
     dynamic: bool,
+    /// How the GPU module writes the built-ins: `fast` (WGSL's own) or `exact` (the CPU
+    /// reference's bits).
+    #[arg(long, value_enum, default_value_t = LoweringChoice::Fast)]
+    lowering: LoweringChoice,
     /// A directory to search for the shaders' `#include` files (after each shader's own folder
     /// and the scene's `include` list; repeat for more).
     #[arg(short = 'I', value_name = "DIR")]

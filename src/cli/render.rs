@@ -15,7 +15,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode, String> {
     let mut scene = Scene::load(&args.scene).map_err(|e| e.to_string())?;
     scene.add_include_dirs(&args.include);
     let started = Instant::now();
-    let options = render::Options { specialize: !args.dynamic };
+    let options = render::Options { specialize: !args.dynamic, lowering: args.lowering.into() };
     let prepared = render::prepare_with(&scene, options).map_err(|e| e.to_string())?;
     let compiled = started.elapsed();
     let (backend, gpu) = match args.backend {

@@ -14,9 +14,9 @@ use patina_runtime::gpu::Gpu;
 use patina_runtime::render::{self, Backend, Cache, Prepared, RenderError};
 use patina_runtime::scene::{MeshSource, Scene};
 
-use super::BackendChoice;
 use super::progress::{RenderBar, with_bars};
 use super::render::open_gpu;
+use super::{BackendChoice, LoweringChoice};
 
 /// Arguments of `patina watch`.
 #[derive(clap::Args, Debug)]
@@ -32,6 +32,10 @@ pub struct WatchArgs {
     /// Compile every parameter dynamic (as uniforms) instead of binding the scene's values.
     #[arg(long)]
     dynamic: bool,
+    /// How the GPU module writes the built-ins: `fast` (WGSL's own) or `exact` (the CPU
+    /// reference's bits).
+    #[arg(long, value_enum, default_value_t = LoweringChoice::Fast)]
+    lowering: LoweringChoice,
     /// Stop after N renders, failed ones included (for scripts and tests); without it, watch until
     /// interrupted.
     #[arg(long, value_name = "N")]
@@ -176,7 +180,7 @@ impl Session {
             .map(|s| s.path.clone())
             .collect();
         let started = Instant::now();
-        let options = render::Options { specialize: !self.args.dynamic };
+        let options = render::Options { specialize: !self.args.dynamic, lowering: self.args.lowering.into() };
         let compiled_before = self.cache.misses;
         let prepared = render::prepare_cached(&scene, options, &mut self.cache).map_err(failure)?;
         let compile = started.elapsed();

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use patina_compiler::backend::cpu::{Binding, CpuProgram};
-use patina_compiler::backend::wgsl::{self, BoundLight};
+use patina_compiler::backend::wgsl::{self, BoundLight, Lowering};
 use patina_compiler::bind::{Consumed, Fixed};
 use patina_compiler::diag::{Diagnostic, Severity};
 use patina_compiler::source::SourceMap;
@@ -31,7 +31,7 @@ use crate::Interface;
 /// assert_eq!(compiled.interface.param("roughness").unwrap().fixed, Some(vec![0.2]));
 /// # Ok::<(), patina::CompileError>(())
 /// ```
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Compiler {
     include_dirs: Vec<PathBuf>,
     shader: Option<String>,
@@ -40,6 +40,22 @@ pub struct Compiler {
     atmosphere: Option<Light>,
     fixed: Vec<(String, Value)>,
     fold_host: bool,
+    lowering: Lowering,
+}
+
+impl Default for Compiler {
+    fn default() -> Compiler {
+        Compiler {
+            include_dirs: Vec::new(),
+            shader: None,
+            lights: Vec::new(),
+            displacement: None,
+            atmosphere: None,
+            fixed: Vec::new(),
+            fold_host: false,
+            lowering: Lowering::Fast,
+        }
+    }
 }
 
 /// A light (or displacement or atmosphere) shader to bind: where its source is, which shader of it, and the
@@ -145,6 +161,15 @@ impl Compiler {
         self
     }
 
+    /// How the WGSL writes the built-ins. The default, [`Lowering::Fast`], uses WGSL's own
+    /// (`dot`, `normalize`, `inverseSqrt`, matrix products), as hand-written WGSL does;
+    /// [`Lowering::Exact`] spells them out in the CPU reference's order of operations, so that
+    /// the GPU reproduces [`testing`](crate::testing)'s results bit for bit where WGSL is exact.
+    pub fn lowering(mut self, lowering: Lowering) -> Compiler {
+        self.lowering = lowering;
+        self
+    }
+
     /// Reads and compiles the surface shader of `path`.
     pub fn compile_file(&self, path: impl AsRef<Path>) -> Result<Compiled, CompileError> {
         let path = path.as_ref();
@@ -207,6 +232,7 @@ impl Compiler {
             bound_atmosphere.as_ref(),
             &bound,
             &surface.strings,
+            self.lowering,
         )
         .map_err(|d| internal(d, &surface))?;
         drop((bound, bound_displacement, bound_atmosphere));

@@ -127,8 +127,9 @@ pub(super) fn surface_key(
     surface: &ShaderRef,
     displacement: Option<&ShaderRef>,
     light_keys: &[String],
-    specialize: bool,
+    options: super::Options,
 ) -> String {
+    let specialize = options.specialize;
     let skip = if specialize { surface.animate.clone() } else { surface.params.keys().cloned().collect() };
     let mut key = shader_key(surface, &skip);
     if let Some(d) = displacement {
@@ -137,7 +138,7 @@ pub(super) fn surface_key(
     for l in light_keys {
         let _ = write!(key, "|light {l}");
     }
-    let _ = write!(key, "|{specialize}");
+    let _ = write!(key, "|{specialize}|{}", options.lowering);
     key
 }
 

@@ -13,6 +13,7 @@ pub mod shadow;
 pub(crate) mod textures;
 
 use glam::Mat4;
+pub use patina_compiler::backend::wgsl::Lowering;
 use patina_compiler::syntax::ast::ShaderKind;
 
 use crate::gpu::Gpu;
@@ -116,11 +117,15 @@ pub struct Options {
     /// Bind each shader to the parameter values the scene sets and does not animate, leaving out
     /// what they make dead (the default); `false` keeps every parameter in the uniform block.
     pub specialize: bool,
+    /// How the GPU module writes the built-ins: [`Lowering::Exact`] (the default here, since the
+    /// renderer is what the CPU reference is compared against) reproduces the interpreter's bits,
+    /// [`Lowering::Fast`] uses WGSL's own built-ins.
+    pub lowering: Lowering,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { specialize: true }
+        Options { specialize: true, lowering: Lowering::Exact }
     }
 }
 
@@ -185,7 +190,7 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
                 [near, far]
             },
         };
-        let key = cache::surface_key(&o.surface, o.displacement.as_ref(), &light_keys, specialize);
+        let key = cache::surface_key(&o.surface, o.displacement.as_ref(), &light_keys, options);
         let key = cache::with_atmosphere(key, o.atmosphere.as_ref());
         let surface = match cache.surface(&key) {
             Some(cached) => program::rebind_shaded(
@@ -214,7 +219,14 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
                     Some(d) => Some(program::load(d, ShaderKind::Displacement, world_to_camera, specialize)?),
                     None => None,
                 };
-                let surface = program::shaded_program(loaded, displacement, atmosphere, &lights, &frame)?;
+                let surface = program::shaded_program(
+                    loaded,
+                    displacement,
+                    atmosphere,
+                    &lights,
+                    &frame,
+                    options.lowering,
+                )?;
                 cache.keep_surface(key, &surface);
                 surface
             }

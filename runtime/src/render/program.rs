@@ -10,7 +10,7 @@ use patina_compiler::source::SourceMap;
 
 use glam::{Mat4, Vec3, Vec4};
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, SlotKind};
-use patina_compiler::backend::wgsl::{self, BoundLight, GpuProgram};
+use patina_compiler::backend::wgsl::{self, BoundLight, GpuProgram, Lowering};
 use patina_compiler::ir::types::{Base, Type};
 use patina_compiler::ir::{ExprKind, Literal, Shader};
 use patina_compiler::split::{self, Stages};
@@ -331,16 +331,18 @@ pub fn surface_program(
     lights: &[LightProgram],
     frame: &Frame,
 ) -> Result<SurfaceProgram, RenderError> {
-    shaded_program(loaded, displacement, None, lights, frame)
+    shaded_program(loaded, displacement, None, lights, frame, Lowering::Exact)
 }
 
-/// As [`surface_program`], with an atmosphere (volume) shader run after the surface.
+/// As [`surface_program`], with an atmosphere (volume) shader run after the surface, and the GPU
+/// module written in `lowering`.
 pub fn shaded_program(
     loaded: LoadedShader,
     displacement: Option<LoadedShader>,
     atmosphere: Option<LoadedShader>,
     lights: &[LightProgram],
     frame: &Frame,
+    lowering: Lowering,
 ) -> Result<SurfaceProgram, RenderError> {
     let spaces = &frame.spaces;
     let stages = split::split(&loaded.shader).map_err(|d| RenderError::Compile(d.message))?;
@@ -362,6 +364,7 @@ pub fn shaded_program(
         bound_atmosphere.as_ref(),
         &bound,
         &loaded.strings,
+        lowering,
     )
     .map_err(|d| RenderError::Compile(d.message))?;
     let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };

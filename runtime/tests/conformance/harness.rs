@@ -9,7 +9,7 @@
 //! above 2^24 on the way in and out).
 
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, SlotKind};
-use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
+use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, Lowering, compile_kernel_lowered};
 use patina_compiler::ir::types::{Base, Type};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
@@ -96,6 +96,8 @@ pub struct Spec {
     /// The prefix of the inputs to print with a mismatch of an output (e.g. `o3m1_0` -> `c3a`:
     /// the inputs of the case that failed; an empty prefix prints every input).
     pub related: fn(&str) -> String,
+    /// How the kernel writes the built-ins (the tolerances are the caller's to fit).
+    pub lowering: Lowering,
 }
 
 /// Compiles and runs `spec` on both backends and panics with a report of every output outside
@@ -182,7 +184,7 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
     let mut diff = shader.clone();
     patina_compiler::opt::prepare(&mut diff);
     let names: Vec<&str> = inputs.iter().map(|(n, _, _)| n.as_str()).collect();
-    let kernel = compile_kernel(&diff, &spec.lights, &[], &names, &outputs)
+    let kernel = compile_kernel_lowered(&diff, &spec.lights, &[], &names, &outputs, spec.lowering)
         .unwrap_or_else(|d| panic!("the WGSL backend rejects the test shader: {}", d.message));
     let total = batches * points;
     let mut record = Vec::with_capacity(total * kernel.input_stride as usize * 4);

@@ -79,6 +79,7 @@ impl Translator<'_> {
             "exp" => self.math1(M::Exp, v(0)),
             "sqrt" => self.math1(M::Sqrt, v(0)),
             // 1 / sqrt(x), as the interpreter (WGSL's inverseSqrt may differ by 2 ulp).
+            "inversesqrt" if self.fast() => self.math1(M::InverseSqrt, v(0)),
             "inversesqrt" => {
                 let one = self.float(1.0);
                 let root = self.math1(M::Sqrt, v(0));
@@ -205,17 +206,20 @@ impl Translator<'_> {
                 void(self)
             }
             "length" => self.length(v(0)),
+            "distance" if self.fast() => self.math2(M::Distance, v(0), v(1)),
             "distance" => {
                 let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
                 let d = self.zip_parts(Op::Subtract, &a, &b);
                 self.length_parts(&d)
             }
             "normalize" => self.normalize(v(0)),
+            "dot" if self.fast() && types[0].base.components() > 1 => self.math2(M::Dot, v(0), v(1)),
             "dot" => {
                 let k = types[0].base.components();
                 let (a, b) = (self.parts(v(0), k), self.parts(v(1), k));
                 self.dot_parts(&a, &b)
             }
+            "cross" if self.fast() => self.math2(M::Cross, v(0), v(1)),
             "cross" => {
                 let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
                 let mut term = |i: usize, j: usize| {
@@ -232,6 +236,9 @@ impl Translator<'_> {
                     Some(r) => *r,
                     None => self.global_value("Ng").unwrap_or(v(0)),
                 };
+                if self.fast() {
+                    return Ok(self.math3(M::FaceForward, v(0), v(1), nref));
+                }
                 // WGSL faceForward: n where dot(i, nref) < 0, else -n.
                 let (i, r) = (self.parts(v(1), 3), self.parts(nref, 3));
                 let d = self.dot_parts(&i, &r);
@@ -356,12 +363,18 @@ impl Translator<'_> {
 
     /// `sqrt(v . v)` of a three-component vector, summed as the interpreter does.
     pub(super) fn length(&mut self, v: Value) -> Value {
+        if self.fast() {
+            return self.math1(M::Length, v);
+        }
         let p = self.parts(v, 3);
         self.length_parts(&p)
     }
 
     /// `v / length(v)` of a three-component vector (a zero vector gives NaN, as in WGSL).
     pub(super) fn normalize(&mut self, v: Value) -> Value {
+        if self.fast() {
+            return self.math1(M::Normalize, v);
+        }
         let p = self.parts(v, 3);
         let len = self.length_parts(&p);
         let len = self.splat(len, 3);
@@ -370,6 +383,9 @@ impl Translator<'_> {
 
     /// `i - 2 * dot(n, i) * n`.
     pub(super) fn reflect(&mut self, i: Value, n: Value) -> Value {
+        if self.fast() {
+            return self.math2(M::Reflect, i, n);
+        }
         let (ip, np) = (self.parts(i, 3), self.parts(n, 3));
         let d = self.dot_parts(&np, &ip);
         let two = self.float(2.0);
@@ -389,6 +405,9 @@ impl Translator<'_> {
 
     /// `a . b` of three-component vectors, summed as the interpreter does.
     pub(super) fn dot3(&mut self, a: Value, b: Value) -> Value {
+        if self.fast() {
+            return self.math2(M::Dot, a, b);
+        }
         let (a, b) = (self.parts(a, 3), self.parts(b, 3));
         self.dot_parts(&a, &b)
     }
@@ -396,6 +415,9 @@ impl Translator<'_> {
     /// The interpreter's `sign`: 1, -1, 0 for NaN, or `x` itself for zeros (keeping the sign of
     /// zero). NaN is found from the bits: comparisons with NaN are not reliable on every device.
     fn sign(&mut self, x: Value) -> Value {
+        if self.fast() {
+            return self.math1(M::Sign, x);
+        }
         let (zero, one, minus_one) = (self.float(0.0), self.float(1.0), self.float(-1.0));
         let bits = self.fb.add(Expression::As { expr: x, kind: ScalarKind::Uint, convert: None });
         let magnitude = self.fb.add(Expression::Literal(naga::Literal::U32(0x7fff_ffff)));
@@ -449,23 +471,24 @@ impl Translator<'_> {
 
     /// `pow(x, y)` with the interpreter's (C's `powf`) result for a negative base and an integral
     /// exponent, ±|x|^y by the exponent's parity, where WGSL leaves `pow` of a negative base
-    /// undefined (NaN on Vulkan drivers); other cases are WGSL's `pow`. `n` is the width.
+    /// undefined (NaN on Vulkan drivers); other cases are WGSL's `pow`. One `pow` of the base
+    /// chosen for the case, since a `select` evaluates both of its operands. `n` is the width.
     fn pow(&mut self, x: Value, y: Value, n: u32) -> Value {
-        let direct = self.math2(M::Pow, x, y);
-        let ax = self.math1(M::Abs, x);
-        let magnitude = self.math2(M::Pow, ax, y);
         let (zero, half) = (self.float(0.0), self.float(0.5));
         let (zero, half) = (self.splat(zero, n), self.splat(half, n));
         let negative = self.binary(Op::Less, x, zero);
         let whole = self.math1(M::Trunc, y);
         let integral = self.binary(Op::Equal, y, whole);
+        let take = self.binary(Op::And, negative, integral);
+        let ax = self.math1(M::Abs, x);
+        let base = self.pick(take, ax, x);
+        let power = self.math2(M::Pow, base, y);
         let halved = self.binary(Op::Multiply, y, half);
         let halved_whole = self.math1(M::Trunc, halved);
         let odd = self.binary(Op::NotEqual, halved, halved_whole);
-        let flipped = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: magnitude });
-        let signed = self.pick(odd, flipped, magnitude);
-        let take = self.binary(Op::And, negative, integral);
-        self.pick(take, signed, direct)
+        let flip = self.binary(Op::And, take, odd);
+        let flipped = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: power });
+        self.pick(flip, flipped, power)
     }
 
     /// `lightsource(name, v)` inside `illuminance`, visiting light `self.light`: as the

@@ -149,6 +149,9 @@ impl Translator<'_> {
 
     /// WGSL `refract(i, n, eta)`, as the interpreter writes it: 0 on total internal reflection.
     pub(super) fn refract(&mut self, i: Value, n: Value, eta: Value) -> Value {
+        if self.fast() {
+            return self.math3(M::Refract, i, n, eta);
+        }
         let (ip, np) = (self.parts(i, 3), self.parts(n, 3));
         let d = self.dot_parts(&np, &ip);
         let (one, zero) = (self.float(1.0), self.float(0.0));

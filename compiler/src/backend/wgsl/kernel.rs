@@ -14,6 +14,7 @@ use naga::{
     TypeInner,
 };
 
+use super::Lowering;
 use super::body::{Translator, Value};
 use super::entry::seed_name;
 use super::func::FnBuilder;
@@ -81,7 +82,21 @@ pub fn compile_kernel(
     inputs: &[&str],
     outputs: &[&str],
 ) -> Result<Kernel, Diagnostic> {
+    compile_kernel_lowered(shader, lights, strings, inputs, outputs, Lowering::Exact)
+}
+
+/// As [`compile_kernel`], in the given lowering (the fast one measures what users' modules
+/// compute, against the same f64 reference).
+pub fn compile_kernel_lowered(
+    shader: &Shader,
+    lights: &[LightBinding],
+    strings: &[(String, String)],
+    inputs: &[&str],
+    outputs: &[&str],
+    lowering: Lowering,
+) -> Result<Kernel, Diagnostic> {
     let mut mb = ModuleBuilder::without_uniform_tables();
+    mb.lowering = lowering;
     let mut t = Translator::new(&mut mb, shader, "", lights, strings, "body");
     t.block(&shader.body)?;
     let body_fn = std::mem::replace(&mut t.fb, FnBuilder::new("")).finish();

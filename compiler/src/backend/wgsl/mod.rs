@@ -19,6 +19,7 @@ mod func;
 mod geometry;
 pub mod interface;
 mod kernel;
+mod lowering;
 mod matrices;
 mod module;
 mod params;
@@ -39,7 +40,8 @@ use body::Translator;
 pub use body::{MAX_LIGHTS, MAX_LOOP_ITERATIONS};
 pub use entry::RANDOM_ROW;
 use interface::{INTERFACE_VERSION, Interface, Output, UniformSource};
-pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel};
+pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel, compile_kernel_lowered};
+pub use lowering::Lowering;
 use module::ModuleBuilder;
 
 /// A light or displacement shader bound to a surface, with the values of its string parameters.
@@ -97,7 +99,8 @@ impl GpuProgram {
 
 pub use crate::ir::is_ambient;
 
-/// Compiles the stages of a surface shader with its bound lights into a validated module.
+/// Compiles the stages of a surface shader with its bound lights into a validated module, in the
+/// exact lowering.
 pub fn compile(
     stages: &Stages,
     lights: &[BoundLight],
@@ -114,18 +117,20 @@ pub fn compile_object(
     lights: &[BoundLight],
     strings: &[(String, String)],
 ) -> Result<GpuProgram, Diagnostic> {
-    compile_shaded(stages, displacement, None, lights, strings)
+    compile_shaded(stages, displacement, None, lights, strings, Lowering::Exact)
 }
 
 /// As [`compile_object`], with an atmosphere (volume) shader run after the surface at each
 /// fragment: it reads the surface's `Ci`, `Oi`, `P` and `I` and its `Ci` and `Oi` are the
-/// fragment's colour and opacity (RenderMan's volume shader between the surface and the eye).
+/// fragment's colour and opacity (RenderMan's volume shader between the surface and the eye);
+/// `lowering` chooses between the interpreter's bits and WGSL's built-ins ([`Lowering`]).
 pub fn compile_shaded(
     stages: &Stages,
     displacement: Option<&BoundLight>,
     atmosphere: Option<&BoundLight>,
     lights: &[BoundLight],
     strings: &[(String, String)],
+    lowering: Lowering,
 ) -> Result<GpuProgram, Diagnostic> {
     body::check_light_count(&stages.fragment, &lights.iter().map(|l| l.shader).collect::<Vec<_>>())?;
     let bindings: Vec<LightBinding> = lights
@@ -137,6 +142,7 @@ pub fn compile_shaded(
         })
         .collect();
     let mut mb = ModuleBuilder::new();
+    mb.lowering = lowering;
 
     let mut light_functions = Vec::new();
     for (k, light) in lights.iter().enumerate() {

@@ -29,6 +29,8 @@ pub(crate) struct ModuleBuilder {
     /// (`tables.rs`).
     table_bytes: u32,
     table_budget: u32,
+    /// How the built-ins are written (`lowering.rs`).
+    pub lowering: super::Lowering,
 }
 
 /// A naga scalar for the language's scalar bases.
@@ -77,6 +79,7 @@ impl ModuleBuilder {
             tables: FxHashMap::default(),
             table_bytes: 0,
             table_budget: super::tables::TABLE_BUDGET,
+            lowering: super::Lowering::Exact,
         }
     }
 

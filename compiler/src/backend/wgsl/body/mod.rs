@@ -125,6 +125,11 @@ impl<'a> Translator<'a> {
         }
     }
 
+    /// Whether built-ins are written as WGSL's own (`super::lowering`).
+    pub fn fast(&self) -> bool {
+        self.mb.lowering == super::Lowering::Fast
+    }
+
     /// A diagnostic for something this backend cannot translate (the interpreter may run it).
     pub fn error(&self, span: SrcSpan, message: impl Into<String>) -> Diagnostic {
         Diagnostic::error(Code::Internal, message, span, "here")

@@ -106,8 +106,14 @@ fn run_lowered(cases: &[Case], lights: &[LightBinding], lowering: Lowering) {
     let Some(gpu) = gpu::for_tests() else { return };
     let (src, mut outputs) = shader(cases);
     if lowering == Lowering::Fast {
-        for (_, tol) in &mut outputs {
-            *tol = fast_tolerance(*tol);
+        for (name, tol) in &mut outputs {
+            let case =
+                related(name).strip_prefix('c').and_then(|i| i.trim_end_matches('a').parse::<usize>().ok());
+            let projective = case.is_some_and(|i| {
+                let c = &cases[i];
+                c.outs.iter().any(|(ty, _)| *ty == "point") && c.args.iter().any(|(ty, _)| *ty == "matrix")
+            });
+            *tol = if projective { FAST_PROJECTIVE } else { fast_tolerance(*tol) };
         }
     }
     let spec =
@@ -155,6 +161,13 @@ fn fast_tolerance(exact: Tol) -> Tol {
         _ => Tol::Near { abs: FAST_ABS, rel: FAST_REL },
     }
 }
+
+/// A point transformed by a matrix argument in the fast lowering: the point is divided by its
+/// transformed w, which a random matrix can bring near 0, so the products' rounding is magnified
+/// by 1/|w| (the sample reaches |w| of about 1e-3, where x / w is 6e3); the f32 interpreter's
+/// own error against f64 is magnified alike there. Measured on lavapipe over the suite's
+/// sample: 2765 ulp, a relative error of 3.3e-4.
+const FAST_PROJECTIVE: Tol = Tol::Near { abs: FAST_ABS, rel: 5e-4 };
 
 /// See [`fast_tolerance`].
 const FAST_ABS: f64 = 2e-5;

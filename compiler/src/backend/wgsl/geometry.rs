@@ -56,6 +56,12 @@ impl Translator<'_> {
         if ty.base == Base::Color {
             return self.colour_to_rgb(space, v, span);
         }
+        if self.fast() && ty.base != Base::Matrix4 {
+            return Ok(match self.space_matrices(space) {
+                Some((to_m, from_m)) => self.apply_matrix(v, Rule::of(ty.base), from_m, to_m),
+                None => v,
+            });
+        }
         let (to_m, from_m) = self.space_entries(space);
         if ty.base == Base::Matrix4 {
             let value = self.entries(v, 4);
@@ -84,6 +90,34 @@ impl Translator<'_> {
         };
         let is_string = |this: &Self, i: usize| this.shader.expr(args[i]).ty.base == Base::String;
         let last = vals.len() - 1;
+        if self.fast() {
+            // Spaces by their matrices; a matrix argument too, except for a normal, whose
+            // inverse WGSL has no built-in for.
+            let by_space = |this: &mut Self, v: Value, space: &str, to: bool| match this.space_matrices(space)
+            {
+                Some((to_m, from_m)) if to => this.apply_matrix(v, rule, to_m, from_m),
+                Some((to_m, from_m)) => this.apply_matrix(v, rule, from_m, to_m),
+                None => v,
+            };
+            match args.len() {
+                2 if is_string(self, 0) => {
+                    let to = self.space_name(args[0], span)?;
+                    return Ok(by_space(self, vals[last], &to, true));
+                }
+                3 if is_string(self, 1) => {
+                    let (from, to) = (self.space_name(args[0], span)?, self.space_name(args[1], span)?);
+                    let current = by_space(self, vals[last], &from, false);
+                    return Ok(by_space(self, current, &to, true));
+                }
+                3 if rule != Rule::Normal => {
+                    let from = self.space_name(args[0], span)?;
+                    let current = by_space(self, vals[last], &from, false);
+                    return Ok(self.apply_matrix(current, rule, vals[1], vals[1]));
+                }
+                2 if rule != Rule::Normal => return Ok(self.apply_matrix(vals[1], rule, vals[0], vals[0])),
+                _ => {}
+            }
+        }
         let value = self.parts(vals[last], 3);
         let out = match args.len() {
             2 if is_string(self, 0) => {
@@ -114,6 +148,37 @@ impl Translator<'_> {
             }
         };
         Ok(self.vector(&out))
+    }
+
+    /// The matrices of a named space, (current to it, it to current), from the uniform block;
+    /// `None` for "current" and "camera", which are the identity (the fast lowering's
+    /// [`Translator::apply_matrix`] then leaves values as they are).
+    fn space_matrices(&mut self, space: &str) -> Option<(Value, Value)> {
+        if matches!(space, "current" | "camera") {
+            return None;
+        }
+        Some((self.space_matrix(space, false), self.space_matrix(space, true)))
+    }
+
+    /// The fast lowering's `transform`: `v` by the language matrix `m` under `rule` as WGSL
+    /// matrix products (`inv`, `m`'s inverse, only for normals). A language row is a WGSL
+    /// column, so the row vector `(v, 1) M` is `m * vec4(v, 1)`, and a normal's `n inv(M)^T`
+    /// is `vec4(n, 0) * inv`.
+    fn apply_matrix(&mut self, v: Value, rule: Rule, m: Value, inv: Value) -> Value {
+        let w = self.float(if rule == Rule::Point { 1.0 } else { 0.0 });
+        let ty = self.mb.ty(Type::of(Base::Float4), false);
+        let v4 = self.fb.add(Expression::Compose { ty, components: vec![v, w] });
+        let product = match rule {
+            Rule::Normal => self.binary(Op::Multiply, v4, inv),
+            _ => self.binary(Op::Multiply, m, v4),
+        };
+        let xyz = self.xyz(product);
+        if rule != Rule::Point {
+            return xyz;
+        }
+        let w = self.at(product, 3);
+        let w = self.splat(w, 3);
+        self.div(xyz, w)
     }
 
     /// The name of a space, which must be known when the shader is compiled.

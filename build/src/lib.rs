@@ -100,6 +100,7 @@ pub struct Shader {
     fixed: Vec<(String, Value)>,
     include_dirs: Vec<PathBuf>,
     fold_host: Option<bool>,
+    lowering: patina::Lowering,
 }
 
 impl Shader {
@@ -114,6 +115,7 @@ impl Shader {
             fixed: Vec::new(),
             include_dirs: Vec::new(),
             fold_host: None,
+            lowering: patina::Lowering::Fast,
         }
     }
 
@@ -161,6 +163,13 @@ impl Shader {
         self
     }
 
+    /// How the WGSL writes the built-ins ([`patina::Compiler::lowering`]; the default is
+    /// [`patina::Lowering::Fast`], WGSL's own built-ins).
+    pub fn lowering(mut self, lowering: patina::Lowering) -> Shader {
+        self.lowering = lowering;
+        self
+    }
+
     fn module_name(&self) -> String {
         let name = match &self.module {
             Some(m) => m.clone(),
@@ -170,7 +179,9 @@ impl Shader {
     }
 
     fn compiler(&self, shared: &Shaders) -> patina::Compiler {
-        let mut c = patina::Compiler::new().fold_host(self.fold_host.unwrap_or(shared.fold_host));
+        let mut c = patina::Compiler::new()
+            .fold_host(self.fold_host.unwrap_or(shared.fold_host))
+            .lowering(self.lowering);
         for dir in self.include_dirs.iter().chain(&shared.include_dirs) {
             c = c.include_dir(dir);
         }

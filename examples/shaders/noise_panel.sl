@@ -1,4 +1,4 @@
-// A reference panel of the standard library's noises: the unit (s, t) square cut into 6 x 4
+// A reference panel of the standard library's noises: the unit (s, t) square cut into 6 x 5
 // tiles, each a z-slice (z = `slice`) of one variant over `frequency` lattice cells per tile side,
 // mapped to grey. Tiles, left to right, top to bottom (tile index k = 6 row + column):
 //   row 0, gradient noise: snoise3 (improved noise, signed), noise3 (unsigned), snoise2 (2D
@@ -9,6 +9,9 @@
 //     distfbm
 //   row 3, fractal sums: fbm, fbm_filtered (octaves limited by the pixel's filter width),
 //     turbulence, ridged_multifractal, hybrid_multifractal, hetero_terrain
+//   row 4, the rest of noise.sl: perlin_noise3 (Perlin's 1985 noise), snoise1 (1D improved
+//     noise of x), noise2 (unsigned 2D), pnoise3 (unsigned, period 2 cells), vsnoise3's x
+//     (vector noise) and dsnoise3's x (the analytic gradient of improved noise)
 // The grey of tile k is `offset + gain * value` with the pair chosen per variant from its range
 // (docs/stdlib/*.md), so every tile spans a visible range; the grey is not clamped, so a test can
 // read the value back. Between the tiles is a blue gutter (never grey: R, G and B differ).
@@ -18,7 +21,7 @@
 #include <cellular.sl>
 
 #define COLUMNS 6
-#define ROWS 4
+#define ROWS 5
 
 surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
                     float gutter = 0.05)
@@ -98,7 +101,7 @@ surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
             value = distfbm(p, 0.5, 2, octaves, 1);
             gain = 0.45;
         }
-    } else {
+    } else if (k < 24) {
         if (k == 18) {
             value = fbm(p, 0.5, 2, octaves);
             gain = 0.45;
@@ -122,6 +125,26 @@ surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
             value = hetero_terrain(p, 0.25, 2, octaves, 0.3);
             offset = 0.3;
             gain = 0.3;
+        }
+    } else {
+        if (k == 24) {
+            value = perlin_noise3(p);
+            gain = 0.6;
+        } else if (k == 25) {
+            value = snoise1(p[0]);
+        } else if (k == 26) {
+            value = noise2(p[0], p[1]);
+            offset = 0;
+            gain = 1;
+        } else if (k == 27) {
+            value = pnoise3(p, point(2, 2, 2));
+            offset = 0;
+            gain = 1;
+        } else if (k == 28) {
+            value = vsnoise3(p)[0];
+        } else {
+            value = dsnoise3(p)[0];
+            gain = 0.25;
         }
     }
     float edge = min(min(u, 1 - u), min(v, 1 - v));

@@ -4,7 +4,7 @@
 use patina_compiler::backend::cpu::{Binding, CpuProgram};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Comparison, Image, Thresholds, compare};
-use patina_runtime::render::{self, Backend};
+use patina_runtime::render::{self, Backend, Lowering};
 use patina_runtime::scene::{ParamValue, Scene};
 
 /// Loads `examples/scenes/NAME.toml`, resized to `width × height` with supersampling off (a test
@@ -38,16 +38,28 @@ pub struct Renders {
 
 /// Renders `scene` on the CPU reference and on the GPU, asserts that neither image has a NaN or
 /// infinity and that they agree within `t`; `None` when `PATINA_GPU=off` (then nothing is
-/// checked: the GPU is the point). Fails loudly when no adapter can be opened.
+/// checked: the GPU is the point). Fails loudly when no adapter can be opened. The GPU draws the
+/// scene in both lowerings, and each must meet `t`; the returned image is the exact lowering's.
 pub fn both(label: &str, scene: &Scene, t: Thresholds) -> Option<Renders> {
-    let gpu = patina_runtime::gpu::for_tests()?;
+    let device = patina_runtime::gpu::for_tests()?;
     let prepared = render::prepare(scene).unwrap_or_else(|e| panic!("{label}: {e}"));
     let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
-    let gpu = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_finite(&format!("{label} (CPU)"), &cpu);
+    let gpu =
+        render::render(&prepared, Backend::Gpu, Some(&device)).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_finite(&format!("{label} (GPU)"), &gpu);
     let comparison = compare(&cpu, &gpu, &t).unwrap();
     assert!(comparison.passes(&t), "{label}: GPU and CPU images differ: {comparison:?}");
+    let options = render::Options { lowering: Lowering::Fast, ..render::Options::default() };
+    let fast = render::prepare_with(scene, options).unwrap_or_else(|e| panic!("{label} (fast): {e}"));
+    let fast =
+        render::render(&fast, Backend::Gpu, Some(&device)).unwrap_or_else(|e| panic!("{label} (fast): {e}"));
+    assert_finite(&format!("{label} (GPU, fast lowering)"), &fast);
+    let fast_comparison = compare(&cpu, &fast, &t).unwrap();
+    assert!(
+        fast_comparison.passes(&t),
+        "{label}: the GPU's fast lowering and the CPU differ: {fast_comparison:?}"
+    );
     Some(Renders { cpu, gpu, comparison })
 }
 

@@ -5,7 +5,8 @@
 //!
 //! Pipeline creation is the first render on a fresh device less a second render of the same
 //! scene on it (which finds its pipelines kept), both at 4 × 4 pixels so that shading costs
-//! nothing. The table goes to stdout as Markdown; docs/performance.md keeps the last one.
+//! nothing. Each scene is measured in both lowerings (exact, then fast). The table goes to stdout
+//! as Markdown; docs/performance.md keeps the last one.
 //!
 //! Run with `cargo bench -p patina-runtime --bench pipelines` (optionally followed by scene names,
 //! `-- noise_panel hypertexture`, to measure only those).
@@ -14,7 +15,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use patina_runtime::gpu::Gpu;
-use patina_runtime::render::{self, Backend, Prepared};
+use patina_runtime::render::{self, Backend, Lowering, Prepared};
 use patina_runtime::scene::Scene;
 
 #[global_allocator]
@@ -36,9 +37,10 @@ fn expressions(module: &naga::Module) -> usize {
         + module.global_expressions.len()
 }
 
-fn measure(path: &Path) -> Result<Row, String> {
+fn measure(path: &Path, lowering: Lowering) -> Result<Row, String> {
     let scene = Scene::load(path).map_err(|e| e.to_string())?;
-    let mut prepared: Prepared = render::prepare(&scene).map_err(|e| e.to_string())?;
+    let options = render::Options { lowering, ..render::Options::default() };
+    let mut prepared: Prepared = render::prepare_with(&scene, options).map_err(|e| e.to_string())?;
     prepared.width = 4;
     prepared.height = 4;
     prepared.supersample = 1;
@@ -84,15 +86,24 @@ fn main() {
             return;
         }
     }
-    println!("| scene | modules | naga expressions | WGSL bytes | pipeline creation ms |");
+    println!(
+        "| scene | modules | naga expressions (exact / fast) | WGSL bytes (exact / fast) | pipeline creation ms (exact / fast) |"
+    );
     println!("|---|---|---|---|---|");
     for path in &scenes {
-        match measure(path) {
-            Ok(r) => println!(
-                "| {} | {} | {} | {} | {:.0} |",
-                r.name, r.modules, r.expressions, r.wgsl_bytes, r.pipeline_ms
+        match (measure(path, Lowering::Exact), measure(path, Lowering::Fast)) {
+            (Ok(e), Ok(f)) => println!(
+                "| {} | {} | {} / {} | {} / {} | {:.0} / {:.0} |",
+                e.name,
+                e.modules,
+                e.expressions,
+                f.expressions,
+                e.wgsl_bytes,
+                f.wgsl_bytes,
+                e.pipeline_ms,
+                f.pipeline_ms
             ),
-            Err(e) => println!("| {} | error: {e} | | | |", path.display()),
+            (Err(e), _) | (_, Err(e)) => println!("| {} | error: {e} | | | |", path.display()),
         }
     }
 }

@@ -6,7 +6,7 @@ use std::fmt;
 
 use patina_compiler::backend::cpu::{LightBinding, Texture};
 use patina_compiler::backend::wgsl::interface::UniformSource;
-use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, KernelValue, compile_kernel};
+use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, KernelValue, Lowering, compile_kernel_lowered};
 use patina_compiler::diag::Diagnostic;
 use patina_compiler::ir::Shader;
 use patina_compiler::ir::types::Base;
@@ -69,9 +69,22 @@ pub fn run_kernel(
     inputs: &Columns,
     outputs: &[&str],
 ) -> Result<Vec<Vec<f64>>, KernelError> {
+    run_kernel_lowered(gpu, shader, lights, Lowering::Exact, count, inputs, outputs)
+}
+
+/// As [`run_kernel`], the kernel written in `lowering`.
+pub fn run_kernel_lowered(
+    gpu: &Gpu,
+    shader: &Shader,
+    lights: &[LightBinding],
+    lowering: Lowering,
+    count: usize,
+    inputs: &Columns,
+    outputs: &[&str],
+) -> Result<Vec<Vec<f64>>, KernelError> {
     let mut diff = shader.clone();
     patina_compiler::opt::derivs::differentiate(&mut diff);
-    run_prepared(gpu, &diff, &Resources { lights, ..Resources::default() }, count, inputs, outputs)
+    run_prepared(gpu, &diff, &Resources { lights, lowering, ..Resources::default() }, count, inputs, outputs)
 }
 
 /// What a kernel reads besides its per-point columns.
@@ -86,6 +99,8 @@ pub struct Resources<'a> {
     pub spaces: &'a [(String, glam::Mat4)],
     /// The textures it looks up, by the name the interpreter's `set_texture` takes.
     pub textures: &'a [(String, Texture)],
+    /// How the kernel writes the built-ins.
+    pub lowering: Lowering,
 }
 
 /// As [`run_kernel`], for a shader already differentiated (`opt::prepare` or `differentiate`),
@@ -99,8 +114,15 @@ pub fn run_prepared(
     outputs: &[&str],
 ) -> Result<Vec<Vec<f64>>, KernelError> {
     let names: Vec<&str> = inputs.iter().map(|(n, _)| *n).collect();
-    let kernel = compile_kernel(shader, resources.lights, resources.strings, &names, outputs)
-        .map_err(KernelError::Compile)?;
+    let kernel = compile_kernel_lowered(
+        shader,
+        resources.lights,
+        resources.strings,
+        &names,
+        outputs,
+        resources.lowering,
+    )
+    .map_err(KernelError::Compile)?;
     let textures = kernel
         .textures
         .iter()

@@ -149,6 +149,8 @@ pub fn gpu(gpu: &Gpu, imager: &ImagerProgram, image: &Image) -> Result<Image, Re
         strings: &imager.loaded.strings,
         spaces: &imager.spaces,
         textures: &imager.textures,
+        // An imager runs once per pixel of the finished image: its exact lowering costs little.
+        lowering: patina_compiler::backend::wgsl::Lowering::Exact,
     };
     let results = crate::kernel::run_prepared(gpu, &imager.loaded.shader, &resources, count, &inputs, &names)
         .map_err(|e| RenderError::Gpu(format!("imager `{}`: {e}", imager.loaded.shader.name)))?;

@@ -18,8 +18,9 @@ use patina_compiler::backend::cpu::{EvalError, Evaluator};
 use patina_compiler::syntax::preprocess::SourceLoader;
 
 use crate::gpu::Gpu;
-use crate::kernel::run_kernel;
+use crate::kernel::{run_kernel, run_kernel_lowered};
 use args::{Points, points};
+use patina_compiler::backend::wgsl::Lowering;
 pub use subjects::{Subject, subjects};
 
 /// How the sweep runs.
@@ -64,6 +65,9 @@ pub struct Measures {
     pub f32_vs_f64: f64,
     /// The largest error of the GPU against the f32 interpreter (`None`: not run).
     pub gpu_vs_f32: Option<f64>,
+    /// The largest error of the GPU in the fast lowering (`Lowering::Fast`, what users' modules
+    /// compute by default) against the f64 interpreter (`None`: not run).
+    pub fast_vs_f64: Option<f64>,
     /// The first failure of each backend that had one.
     pub failures: Vec<Failure>,
     /// Why the GPU did not run, when it was asked to and could not.
@@ -155,6 +159,17 @@ pub fn sweep(subject: &Subject, loader: &dyn SourceLoader, options: &Options, gp
                 }
             }
             Err(e) => m.gpu_error = Some(e.to_string()),
+        }
+        if m.gpu_error.is_none() {
+            match run_kernel_lowered(gpu, &compiled.shader, &[], Lowering::Fast, pts.count, &inputs, &outputs)
+            {
+                Ok(columns) => {
+                    if let Ok(f64_columns) = &f64_run {
+                        m.fast_vs_f64 = Some(worst(&columns, f64_columns));
+                    }
+                }
+                Err(e) => m.gpu_error = Some(format!("fast lowering: {e}")),
+            }
         }
     }
     row.outcome = Ok(m);

@@ -3,7 +3,7 @@
 use super::{BACKENDS, Row};
 
 /// The columns of the table.
-const HEADER: [&str; 8] = [
+const HEADER: [&str; 9] = [
     "file",
     "subject",
     "points",
@@ -12,10 +12,11 @@ const HEADER: [&str; 8] = [
     "non-finite gpu",
     "err f32-f64",
     "err gpu-f32",
+    "err fast-f64",
 ];
 
 /// A table's cells, one row per subject (a subject not swept shows why in its last cell).
-fn cells(rows: &[Row]) -> Vec<[String; 8]> {
+fn cells(rows: &[Row]) -> Vec<[String; 9]> {
     let count = |c: Option<usize>| c.map_or("-".to_string(), |n| n.to_string());
     let error = |e: f64| if e == 0.0 { "0".to_string() } else { format!("{e:.1e}") };
     rows.iter()
@@ -24,6 +25,7 @@ fn cells(rows: &[Row]) -> Vec<[String; 8]> {
                 row.file.clone(),
                 row.label.clone(),
                 row.points.to_string(),
+                String::new(),
                 String::new(),
                 String::new(),
                 String::new(),
@@ -41,8 +43,13 @@ fn cells(rows: &[Row]) -> Vec<[String; 8]> {
                         (None, Some(e)) => error(e),
                         (None, None) => "-".into(),
                     };
+                    cell[8] = match (&m.gpu_error, m.fast_vs_f64) {
+                        (Some(_), _) => "GPU error".into(),
+                        (None, Some(e)) => error(e),
+                        (None, None) => "-".into(),
+                    };
                 }
-                Err(why) => cell[7] = why.clone(),
+                Err(why) => cell[8] = why.clone(),
             }
             cell
         })
@@ -88,7 +95,7 @@ pub fn markdown(rows: &[Row]) -> String {
     let mut out = line(&HEADER.map(String::from));
     out.push_str(&format!(
         "|{}\n",
-        ["---|", "---|", "---:|", "---:|", "---:|", "---:|", "---:|", "---:|"].concat()
+        ["---|", "---|", "---:|", "---:|", "---:|", "---:|", "---:|", "---:|", "---:|"].concat()
     ));
     for row in cells(rows) {
         out.push_str(&line(&row));

@@ -54,7 +54,7 @@ const LIGHTS: [[f32; 3]; 4] = [[-1.5, 1.5, -1.0], [1.5, 1.5, -1.0], [-1.5, -1.5,
 const INTENSITY: f32 = 2.0;
 
 /// The wood's solid-texture scale: rings magnified at the centre and one or two pixels apart at
-/// the corners, so that the colour-map filter averages rings over most of the image.
+/// the corners, so that many pixels' filter boxes hold a ring's edge.
 const WOOD_SCALE: f32 = 24.0;
 /// Where the wood's distant light comes from (hart_wood.toml's), towards the origin.
 const WOOD_LIGHT: [f32; 3] = [-1.0, 2.0, -2.0];

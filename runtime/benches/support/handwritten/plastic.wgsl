@@ -1,0 +1,27 @@
+// Plastic (RenderMan's: ambient, diffuse and specular sums) under four point lights whose
+// camera-space positions and colours (intensity / distance^2 follows) come from the uniforms.
+
+struct Lights {
+    position: array<vec4f, 4>,
+    colour: array<vec4f, 4>,
+};
+@group(0) @binding(0) var<uniform> lights: Lights;
+
+@fragment
+fn plastic4(in: Varyings) -> @location(0) vec4f {
+    // The plane in the camera's space: z = 2, 4 wide.
+    let p = vec3f(in.uv.x * 4.0 - 2.0, 2.0 - in.uv.y * 4.0, 2.0);
+    let n = faceForward(vec3f(0.0, 0.0, -1.0), p, vec3f(0.0, 0.0, -1.0));
+    let v = -normalize(p);
+    let cs = vec3f(1.0);
+    var diffuse = vec3f(0.0);
+    var specular = vec3f(0.0);
+    for (var k = 0; k < 4; k++) {
+        let l = lights.position[k].xyz - p;
+        let cl = lights.colour[k].xyz / dot(l, l);
+        let ln = normalize(l);
+        diffuse += cl * max(0.0, dot(ln, n));
+        specular += cl * pow(max(0.0, dot(n, normalize(ln + v))), 1.0 / 0.1);
+    }
+    return vec4f(cs * (0.5 * diffuse) + 0.5 * specular, 1.0);
+}

@@ -22,7 +22,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 
 use patina_runtime::gpu::{Attribute, Blend, Draw, Gpu, Target, TargetFormat};
 use patina_runtime::image::{Image, Thresholds, compare};
-use patina_runtime::render::{self, Backend, Prepared};
+use patina_runtime::render::{self, Backend, Lowering, Prepared};
 use patina_runtime::scene::Scene;
 
 #[global_allocator]
@@ -116,7 +116,14 @@ fn distant_light([x, y, z]: [f32; 3]) -> String {
 
 /// The renderer's program for `surface` of `file` (the bench file or one of examples/shaders)
 /// with `params`, on a plane that fills a `size` × `size` view, under `lights`.
-fn patina_scene(size: u32, file: &str, surface: &str, params: &str, lights: &str) -> Prepared {
+fn patina_scene(
+    size: u32,
+    file: &str,
+    surface: &str,
+    params: &str,
+    lights: &str,
+    lowering: Lowering,
+) -> Prepared {
     let dir = std::env::temp_dir().join(format!("patina-handwritten-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("bench.sl"), SURFACES).unwrap();
@@ -128,14 +135,17 @@ fn patina_scene(size: u32, file: &str, surface: &str, params: &str, lights: &str
          params = {{ {params} }}\ntransform = [{{ scale = [{PLANE_SCALE:?}, {PLANE_SCALE:?}, 1.0] }}]\n"
     );
     let scene = Scene::parse(&text, dir.join("bench.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
-    render::prepare(&scene).unwrap_or_else(|e| panic!("{surface}: {e}"))
+    let options = render::Options { lowering, ..render::Options::default() };
+    render::prepare_with(&scene, options).unwrap_or_else(|e| panic!("{surface}: {e}"))
 }
 
-/// One shader measured: its label, its size, the renderer's program and the hand-written entry.
+/// One shader measured: its label, its size, the renderer's program in each lowering and the
+/// hand-written entry.
 struct Shader {
     label: &'static str,
     size: u32,
-    scene: Prepared,
+    exact: Prepared,
+    fast: Prepared,
     entry: &'static str,
 }
 
@@ -207,30 +217,23 @@ fn bench(c: &mut Criterion) {
         })
         .collect();
     let wood_lights = light("ambientlight", "intensity = 1.0") + &distant_light(WOOD_LIGHT);
-    let shader = |label, size, scene, entry| Shader { label, size, scene, entry };
+    // The renderer's program for a scene, in both lowerings.
+    let shader = |label, size, (file, surface, params, lights): (&str, &str, &str, &str), entry| Shader {
+        label,
+        size,
+        exact: patina_scene(size, file, surface, params, lights, Lowering::Exact),
+        fast: patina_scene(size, file, surface, params, lights, Lowering::Fast),
+        entry,
+    };
+    let wood_params = format!("aa = 1, scale = {WOOD_SCALE:?}");
+    let hypertexture_light = distant_light(HT_LIGHT);
     let shaders = [
-        shader(
-            "fBm, 6 octaves of improved noise",
-            SIZE,
-            patina_scene(SIZE, "bench.sl", "fbm_bench", "", ""),
-            "fbm_bench",
-        ),
-        shader(
-            "plastic, 4 point lights",
-            SIZE,
-            patina_scene(SIZE, "plastic.sl", "plastic", "", &point_lights),
-            "plastic4",
-        ),
+        shader("fBm, 6 octaves of improved noise", SIZE, ("bench.sl", "fbm_bench", "", ""), "fbm_bench"),
+        shader("plastic, 4 point lights", SIZE, ("plastic.sl", "plastic", "", &point_lights), "plastic4"),
         shader(
             "Hart's wood, APST filter",
             SIZE,
-            patina_scene(
-                SIZE,
-                "hart_solid.sl",
-                "solid_wood",
-                &format!("aa = 1, scale = {WOOD_SCALE:?}"),
-                &wood_lights,
-            ),
+            ("hart_solid.sl", "solid_wood", &wood_params, &wood_lights),
             "wood",
         ),
         // Half the size: at 1024 x 1024 one generated render took 2.2 s on the shared 2-core
@@ -238,13 +241,7 @@ fn bench(c: &mut Criterion) {
         shader(
             "hypertexture, noisy sphere, 64 steps",
             SIZE / 2,
-            patina_scene(
-                SIZE / 2,
-                "hypertexture.sl",
-                "hypertexture",
-                "variant = 0, steps = 64",
-                &distant_light(HT_LIGHT),
-            ),
+            ("hypertexture.sl", "hypertexture", "variant = 0, steps = 64", &hypertexture_light),
             "hypertexture",
         ),
     ];
@@ -252,8 +249,10 @@ fn bench(c: &mut Criterion) {
     let mut sizes: Vec<u32> = shaders.iter().map(|s| s.size).collect();
     sizes.sort_unstable();
     sizes.dedup();
-    let baselines: Vec<(u32, Prepared)> =
-        sizes.iter().map(|&size| (size, patina_scene(size, "bench.sl", "baseline", "", ""))).collect();
+    let baselines: Vec<(u32, Prepared)> = sizes
+        .iter()
+        .map(|&size| (size, patina_scene(size, "bench.sl", "baseline", "", "", Lowering::Exact)))
+        .collect();
     // Pipeline creation and the driver's compile, once each, outside the measurement; the images
     // of these first renders are the ones compared.
     for (size, scene) in &baselines {
@@ -262,12 +261,18 @@ fn bench(c: &mut Criterion) {
     }
     let agreement: Vec<String> = shaders
         .iter()
-        .map(|s| check_agreement(s.label, &generated(&s.scene), &handwritten(s.entry, s.size)))
+        .flat_map(|s| {
+            let hand = handwritten(s.entry, s.size);
+            [
+                check_agreement(&format!("{} (exact)", s.label), &generated(&s.exact), &hand),
+                check_agreement(&format!("{} (fast)", s.label), &generated(&s.fast), &hand),
+            ]
+        })
         .collect();
     let mut group = c.benchmark_group("handwritten");
     group.sample_size(10);
     for s in &shaders {
-        group.bench_function(format!("generated {}", s.label), |b| b.iter(|| generated(&s.scene)));
+        group.bench_function(format!("generated (fast) {}", s.label), |b| b.iter(|| generated(&s.fast)));
         group
             .bench_function(format!("hand-written {}", s.label), |b| b.iter(|| handwritten(s.entry, s.size)));
     }
@@ -281,30 +286,37 @@ fn bench(c: &mut Criterion) {
         "\nOn {}; the shading's time is a render's less the trivial shader's at the same size\n",
         gpu.adapter_description()
     );
-    println!("| shader | pixels | generated ms | hand-written ms | generated / hand-written |");
-    println!("|---|---|---|---|---|");
+    println!(
+        "| shader | pixels | exact ms | fast ms | hand-written ms | exact / hand-written | fast / hand-written |"
+    );
+    println!("|---|---|---|---|---|---|---|");
     let mut trivial = Vec::new();
     for s in &shaders {
         let base = &baselines.iter().find(|b| b.0 == s.size).unwrap().1;
-        let [generated_base, hand_base, generated_time, hand_time] = interleaved_medians(
+        let [generated_base, hand_base, exact_time, fast_time, hand_time] = interleaved_medians(
             [
                 &mut || drop(generated(base)),
                 &mut || drop(handwritten("baseline", s.size)),
-                &mut || drop(generated(&s.scene)),
+                &mut || drop(generated(&s.exact)),
+                &mut || drop(generated(&s.fast)),
                 &mut || drop(handwritten(s.entry, s.size)),
             ],
             31,
         );
-        let generated_shading = generated_time.saturating_sub(generated_base);
+        let exact_shading = exact_time.saturating_sub(generated_base);
+        let fast_shading = fast_time.saturating_sub(generated_base);
         let hand_shading = hand_time.saturating_sub(hand_base);
+        let ratio = |d: Duration| d.as_secs_f64() / hand_shading.as_secs_f64().max(1e-9);
         println!(
-            "| {} | {} × {} | {:.2} | {:.2} | {:.2} |",
+            "| {} | {} × {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
             s.label,
             s.size,
             s.size,
-            ms(generated_shading),
+            ms(exact_shading),
+            ms(fast_shading),
             ms(hand_shading),
-            generated_shading.as_secs_f64() / hand_shading.as_secs_f64().max(1e-9)
+            ratio(exact_shading),
+            ratio(fast_shading)
         );
         trivial.push(format!(
             "{}: generated {:.2} ms, hand-written {:.2} ms",

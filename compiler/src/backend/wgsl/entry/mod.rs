@@ -127,8 +127,14 @@ pub(crate) fn entry_points(
             }
         }
     }
+    // A RenderMan surface's fragment entry fills `Cs` and `Os` from the uniform block and
+    // computes `Ng` from P's screen derivatives before its body reads them (`fragment.rs`,
+    // `init_uniform_inputs`): varyings of them would be interpolated for nothing.
+    let refilled = |name: &str| {
+        !surface.stanford && matches!(name, "Cs" | "Os" | "Ng") && fragment_uses.has_global(name)
+    };
     for g in &carried_globals {
-        if g.frequency == Frequency::Vertex && !g.perlight {
+        if g.frequency == Frequency::Vertex && !g.perlight && !refilled(g.name) {
             crossings.push(Crossing {
                 name: format!("in_{}", sanitize(g.name)),
                 ty: Type::of(g.ty),

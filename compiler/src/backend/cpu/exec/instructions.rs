@@ -43,7 +43,7 @@ macro_rules! compare_with {
 
 impl<F: Real> Machine<F> {
     /// Runs one instruction. Inlined, with everything it calls, into each build of
-    /// `Machine::block`, so that the lane loops are compiled for that build's vectors.
+    /// `Machine::dispatch`, so that the lane loops are compiled for that build's vectors.
     #[inline(always)]
     pub(super) fn inst(&mut self, inst: &Inst, mask: &Mask) {
         match *inst {

@@ -9,7 +9,7 @@ mod instructions;
 mod kernels;
 mod mask;
 
-use crate::backend::cpu::code::{Files, Node};
+use crate::backend::cpu::code::{Files, Inst, Node};
 use crate::backend::cpu::scalar::Real;
 use crate::source::Span;
 pub(crate) use instructions::random;
@@ -103,6 +103,36 @@ impl<F: Real> Machine<F> {
         }
     }
 
+    /// Runs one instruction, in the build for the widest vectors the CPU has. Each build computes
+    /// the same IEEE operations lane for lane (no fused multiply-add is enabled, and the lane loops
+    /// call the same library functions), so the results are bit-identical.
+    #[inline(always)]
+    fn dispatch(&mut self, inst: &Inst, mask: &Mask) {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU has AVX2.
+            unsafe { self.inst_avx2(inst, mask) };
+            return;
+        }
+        self.inst_baseline(inst, mask);
+    }
+
+    /// [`Machine::inst`] for the target's baseline features.
+    #[inline(never)]
+    fn inst_baseline(&mut self, inst: &Inst, mask: &Mask) {
+        self.inst(inst, mask);
+    }
+
+    /// [`Machine::inst`] compiled for AVX2: twice the lanes per vector instruction of the
+    /// baseline's SSE2, and SSE4.1's rounding and blends. Both builds are functions of their own
+    /// rather than inlined into the recursive `block`, whose frames would then hold every
+    /// instruction's temporaries (a stack overflow on rayon's threads in unoptimized builds).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn inst_avx2(&mut self, inst: &Inst, mask: &Mask) {
+        self.inst(inst, mask);
+    }
+
     /// Runs `code` over the first `active` lanes.
     pub fn run(&mut self, code: &[Node], active: usize) -> Result<(), Stop> {
         self.halted = Mask::none();
@@ -110,30 +140,7 @@ impl<F: Real> Machine<F> {
         self.block(code, &Mask::first(active))
     }
 
-    /// Runs `nodes` for the lanes of `entry`, in the build for the widest vectors the CPU has.
-    /// Each build computes the same IEEE operations lane for lane (no fused multiply-add is
-    /// enabled, and the lane loops call the same library functions), so the results are
-    /// bit-identical.
     fn block(&mut self, nodes: &[Node], entry: &Mask) -> Result<(), Stop> {
-        #[cfg(target_arch = "x86_64")]
-        if self.avx2 {
-            // SAFETY: `avx2` is set only when the CPU has AVX2.
-            return unsafe { self.block_avx2(nodes, entry) };
-        }
-        self.block_inline(nodes, entry)
-    }
-
-    /// [`Machine::block`] compiled for AVX2: twice the lanes per vector instruction of the
-    /// baseline's SSE2, and SSE4.1's rounding and blends. The instructions are inlined into it,
-    /// so each costs a jump rather than a call.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn block_avx2(&mut self, nodes: &[Node], entry: &Mask) -> Result<(), Stop> {
-        self.block_inline(nodes, entry)
-    }
-
-    #[inline(always)]
-    fn block_inline(&mut self, nodes: &[Node], entry: &Mask) -> Result<(), Stop> {
         let mut mask = entry.clone();
         for node in nodes {
             if self.halted.any() {
@@ -143,7 +150,7 @@ impl<F: Real> Machine<F> {
                 }
             }
             match node {
-                Node::Inst(inst) => self.inst(inst, &mask),
+                Node::Inst(inst) => self.dispatch(inst, &mask),
                 Node::If { cond, then, otherwise } => {
                     let (yes, no) = mask.split(self.ints.read(*cond));
                     if yes.any() {

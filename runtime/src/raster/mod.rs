@@ -1,6 +1,6 @@
 //! The CPU reference rasterizer: draws triangle lists into a [`Framebuffer`] with the conventions of
 //! the GPU path (wgpu on Vulkan), so that the two images can be compared pixel by pixel, and hands
-//! the visible fragments to a shading callback in batches (the interpreter runs 128 lanes at once).
+//! the visible fragments to a shading callback in batches (the interpreter runs a batch of lanes at once).
 //!
 //! Conventions, all those of wgpu's defaults:
 //!
@@ -100,7 +100,7 @@ pub struct DrawOptions {
 }
 
 impl Default for DrawOptions {
-    /// Opaque drawing with depth writes, in batches of 128 (the interpreter's lane count).
+    /// Opaque drawing with depth writes, in batches of 128.
     fn default() -> Self {
         DrawOptions { blend: Blend::Replace, depth_write: true, batch: 128 }
     }

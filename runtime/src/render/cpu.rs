@@ -4,6 +4,7 @@
 //! the seeds.
 
 use glam::Vec3;
+use patina_compiler::backend::cpu::exec::LANES;
 use patina_compiler::backend::cpu::{
     CpuProgram, Evaluator, POINT_INDEX, lightsource_input, surface_flag_input, surface_input,
 };
@@ -47,9 +48,9 @@ pub fn render(
     Ok(Image { width, height, pixels: fb.color })
 }
 
-/// How every object is drawn: blended over what is there, with depth writes, in batches of 128
-/// fragments (the interpreter's lane count).
-const DRAW: DrawOptions = DrawOptions { blend: Blend::PremultipliedOver, depth_write: true, batch: 128 };
+/// How every object is drawn: blended over what is there, with depth writes, in batches of the
+/// interpreter's lane count.
+const DRAW: DrawOptions = DrawOptions { blend: Blend::PremultipliedOver, depth_write: true, batch: LANES };
 
 /// One object after its vertex stage: what the rasterizer needs to draw it.
 struct Vertices<'a> {

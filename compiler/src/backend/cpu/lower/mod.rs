@@ -240,7 +240,18 @@ impl<'a> Lower<'a> {
     /// Registers for every local, per light for per-light ones (the parameters first, in order).
     fn allocate(&mut self) {
         let lights = self.binding.lights.len();
-        let stores = crate::ir::stores::stores(self.shader);
+        let mut stores = crate::ir::stores::stores(self.shader);
+        // `ir::stores` sees a built-in's outputs only in a statement of its own; one called inside
+        // an expression (`float has = surface("tint", tint)`) writes its argument too.
+        for e in &self.shader.exprs {
+            if let ExprKind::Builtin(b, args) = &e.kind {
+                for (p, a) in b.params.iter().zip(args) {
+                    if let (true, ExprKind::Local(l)) = (p.output, &self.shader.expr(*a).kind) {
+                        stores[l.0 as usize].count += 1;
+                    }
+                }
+            }
+        }
         let mut order: Vec<LocalId> = self.shader.params.clone();
         order.extend(
             (0..self.shader.locals.len() as u32).map(LocalId).filter(|id| !self.shader.params.contains(id)),
@@ -269,8 +280,9 @@ impl<'a> Lower<'a> {
     }
 
     /// Whether a varying variable holds the same value in every lane wherever it is read, so that
-    /// uniform registers can hold it: its only store is its declaration, of a uniform value (a
-    /// table such as a noise permutation, which RenderMan's rules make varying at file scope).
+    /// uniform registers can hold it: its only store is its declaration, of a constant (a table
+    /// such as a noise permutation, which RenderMan's rules make varying at file scope). Only
+    /// constants: a per-draw value may still reach the interpreter as a varying input.
     /// It is read only in its scope, after that store, which gave each lane the same value
     /// whatever the mask. Storing it once per batch rather than per lane, and reading it as a
     /// uniform table, is what makes lookups into it cheap.
@@ -281,7 +293,7 @@ impl<'a> Lower<'a> {
             && !local.rate.perlight
             && stores[id.0 as usize]
                 .only_initialiser(local.span)
-                .is_some_and(|value| uniform_rate(self.shader.expr(value).rate.frequency))
+                .is_some_and(|value| self.shader.expr(value).rate.frequency == Frequency::Constant)
     }
 
     /// The registers of a local (for the current light when it is per-light).

@@ -122,6 +122,31 @@ fn the_cpu_renderer_reports_exactly_the_fragments_it_shades() {
     assert!(total >= covered_pixels && covered_pixels > 0, "{total} fragments, {covered_pixels} covered");
 }
 
+#[test]
+fn the_cpu_renderer_gives_the_same_bits_on_one_thread_and_on_many() {
+    // The steam cup: five objects drawn over each other, three lights, the steam's cube blended
+    // over the cup with both of its faces at many pixels, and `random()` jittering the march, so
+    // the order of blending and the point index both show if threads change them.
+    let s = scene("steam_cup", 48, 48);
+    let prepared = render::prepare(&s).unwrap();
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let progress = Counted::default();
+        let image = pool.install(|| render::render_with_progress(&prepared, Backend::Cpu, None, &progress));
+        let total = progress.starts.lock().unwrap()[0].0;
+        assert_eq!(progress.done.load(std::sync::atomic::Ordering::Relaxed), total, "{threads} threads");
+        image.unwrap()
+    };
+    let one = on(1);
+    let background = s.output.background;
+    assert!(covered(&one, background) > 0.2, "the scene should cover the frame");
+    for threads in [2, 5] {
+        let many = on(threads);
+        let differ =
+            one.pixels.iter().zip(&many.pixels).filter(|(a, b)| a.map(f32::to_bits) != b.map(f32::to_bits));
+        assert_eq!(differ.count(), 0, "{threads} threads against one");
+    }
+}
 /// A scene from text whose object uses the shader `source`, written as NAME.sl beside it in a
 /// scratch directory.
 fn written_scene(name: &str, source: &str, scene: &str) -> Scene {

@@ -15,7 +15,7 @@ use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::source::{SourceMap, Span};
 
 /// The most elements an array may have: every shaded point holds its own copy (the interpreter
-/// keeps one register per element and lane, 128 lanes to a batch), so a large array exhausts
+/// keeps one register per element and lane, 256 lanes to a batch), so a large array exhausts
 /// memory long before it is useful. The standard library's largest table has 768.
 pub const MAX_ARRAY_LENGTH: usize = 4096;
 

@@ -1,8 +1,9 @@
-//! Collects visible fragments into batches for the shading callback and blends the results, in
-//! an order that gives exactly the result of shading and blending each fragment as it comes.
+//! Collects visible fragments into batches for the batch callback, in an order that gives exactly
+//! the result of shading and blending each fragment as it comes, as long as the batches are
+//! blended in the order they are handed out.
 
 use super::Varyings;
-use super::framebuffer::{Blend, Framebuffer};
+use super::framebuffer::Framebuffer;
 use super::interpolate::Sample;
 
 /// A batch of visible fragments handed to the shading callback: their pixels, depths, facing, and
@@ -64,7 +65,6 @@ pub(super) struct Batcher<'a> {
     stamps: Vec<u32>,
     generation: u32,
     fragments: Fragments,
-    colours: Vec<[f32; 4]>,
     batches: usize,
 }
 
@@ -78,7 +78,6 @@ impl<'a> Batcher<'a> {
             stamps: vec![0; fb.color.len()],
             generation: 1,
             fragments: Fragments { components: varyings.components, ..Fragments::default() },
-            colours: Vec::with_capacity(capacity),
             batches: 0,
         }
     }
@@ -88,45 +87,35 @@ impl<'a> Batcher<'a> {
         self.batches
     }
 
-    /// Adds a fragment, shading the batch first if it is full or already holds this pixel (the
-    /// new fragment must blend over the waiting one, not beside it).
+    /// Adds a fragment, handing out the batch first if it is full or already holds this pixel
+    /// (the new fragment must blend over the waiting one, not beside it).
     pub(super) fn push<E>(
         &mut self,
         fb: &mut Framebuffer,
         record: Record,
-        blend: Blend,
-        shade: &mut impl FnMut(&Fragments, &mut [[f32; 4]]) -> Result<(), E>,
+        on_batch: &mut impl FnMut(&mut Framebuffer, &Fragments) -> Result<(), E>,
     ) -> Result<(), E> {
         let pixel = record.y as usize * fb.width as usize + record.x as usize;
         if self.records.len() >= self.capacity || self.stamps[pixel] == self.generation {
-            self.flush(fb, blend, shade)?;
+            self.flush(fb, on_batch)?;
         }
         self.stamps[pixel] = self.generation;
         self.records.push(record);
         Ok(())
     }
 
-    /// Shades the waiting fragments and blends them into `fb`.
+    /// Hands the waiting fragments to `on_batch`.
     pub(super) fn flush<E>(
         &mut self,
         fb: &mut Framebuffer,
-        blend: Blend,
-        shade: &mut impl FnMut(&Fragments, &mut [[f32; 4]]) -> Result<(), E>,
+        on_batch: &mut impl FnMut(&mut Framebuffer, &Fragments) -> Result<(), E>,
     ) -> Result<(), E> {
         if self.records.is_empty() {
             return Ok(());
         }
         self.fill();
-        self.colours.clear();
-        self.colours.resize(self.records.len(), [0.0; 4]);
         self.batches += 1;
-        let result = shade(&self.fragments, &mut self.colours);
-        if result.is_ok() {
-            for (r, &src) in self.records.iter().zip(&self.colours) {
-                let dst = &mut fb.color[r.y as usize * fb.width as usize + r.x as usize];
-                *dst = blend.apply(src, *dst);
-            }
-        }
+        let result = on_batch(fb, &self.fragments);
         self.records.clear();
         self.next_generation();
         result

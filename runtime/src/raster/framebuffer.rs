@@ -52,6 +52,17 @@ impl Framebuffer {
         self.color.get(y as usize * self.width as usize + x as usize).copied()
     }
 
+    /// Blends one shaded colour per pixel of `pixels` into the colour buffer, in order (so a
+    /// pixel listed twice gets the later colour over the earlier). Pixels outside are skipped.
+    pub fn blend(&mut self, pixels: &[(u32, u32)], colours: &[[f32; 4]], blend: Blend) {
+        for (&(x, y), &src) in pixels.iter().zip(colours) {
+            if x < self.width && y < self.height {
+                let dst = &mut self.color[y as usize * self.width as usize + x as usize];
+                *dst = blend.apply(src, *dst);
+            }
+        }
+    }
+
     /// Resolves an n×n supersampled image: each output pixel is the mean of an n×n block (a box
     /// filter over the regular grid of sample positions); depth is the block's nearest. A partial
     /// block at the right or bottom edge is dropped; `n` of 0 is taken as 1.

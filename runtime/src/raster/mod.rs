@@ -1,6 +1,6 @@
 //! The CPU reference rasterizer: draws triangle lists into a [`Framebuffer`] with the conventions of
 //! the GPU path (wgpu on Vulkan), so that the two images can be compared pixel by pixel, and hands
-//! the visible fragments to a shading callback in batches (the interpreter runs 128 lanes at once).
+//! the visible fragments to a shading callback in batches (the interpreter runs a batch of lanes at once).
 //!
 //! Conventions, all those of wgpu's defaults:
 //!
@@ -100,7 +100,7 @@ pub struct DrawOptions {
 }
 
 impl Default for DrawOptions {
-    /// Opaque drawing with depth writes, in batches of 128 (the interpreter's lane count).
+    /// Opaque drawing with depth writes, in batches of 128.
     fn default() -> Self {
         DrawOptions { blend: Blend::Replace, depth_write: true, batch: 128 }
     }
@@ -197,6 +197,28 @@ pub fn draw<E>(
     options: &DrawOptions,
     mut shade: impl FnMut(&Fragments, &mut [[f32; 4]]) -> Result<(), E>,
 ) -> Result<DrawStats, DrawError<E>> {
+    let mut colours = Vec::with_capacity(options.batch.max(1));
+    rasterize(fb, clip, indices, varyings, options, |fb, fragments| {
+        colours.clear();
+        colours.resize(fragments.count, [0.0; 4]);
+        shade(fragments, &mut colours)?;
+        fb.blend(&fragments.pixels, &colours, options.blend);
+        Ok(())
+    })
+}
+
+/// Rasterizes like [`draw`], depth tests and depth writes included, but leaves the colour buffer
+/// to `on_batch`, which receives each batch of visible fragments with the framebuffer. Shading and
+/// blending the batches later, in the order they came, gives exactly what [`draw`] gives: no
+/// fragment's depth test depends on a colour, and no batch holds two fragments of one pixel.
+pub fn rasterize<E>(
+    fb: &mut Framebuffer,
+    clip: &[[f32; 4]],
+    indices: &[u32],
+    varyings: &Varyings,
+    options: &DrawOptions,
+    mut on_batch: impl FnMut(&mut Framebuffer, &Fragments) -> Result<(), E>,
+) -> Result<DrawStats, DrawError<E>> {
     validate(fb, clip, indices, varyings)?;
     let triangles = indices.len() / 3;
     let mut stats = DrawStats { triangles, ..DrawStats::default() };
@@ -255,12 +277,12 @@ pub fn draw<E>(
                 }
                 stats.fragments += 1;
                 let record = Record { x, y, depth, front, tri, sample };
-                batcher.push(fb, record, options.blend, &mut shade)
+                batcher.push(fb, record, &mut on_batch)
             })
             .map_err(DrawError::Shade)?;
         }
     }
-    batcher.flush(fb, options.blend, &mut shade).map_err(DrawError::Shade)?;
+    batcher.flush(fb, &mut on_batch).map_err(DrawError::Shade)?;
     stats.batches = batcher.batches();
     Ok(stats)
 }

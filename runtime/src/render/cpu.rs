@@ -4,6 +4,7 @@
 //! the seeds.
 
 use glam::Vec3;
+use patina_compiler::backend::cpu::exec::LANES;
 use patina_compiler::backend::cpu::{
     CpuProgram, Evaluator, POINT_INDEX, lightsource_input, surface_flag_input, surface_input,
 };
@@ -14,7 +15,11 @@ use super::frame::{Frame, VertexGeometry};
 use super::program::{SurfaceProgram, set_globals, set_spaces};
 use super::{Object, Prepared, Progress, RenderError, Unit};
 use crate::image::Image;
-use crate::raster::{Blend, DrawOptions, Fragments, Framebuffer, Varyings, draw};
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+
+use crate::raster::{Blend, DrawOptions, Fragments, Framebuffer, Varyings, draw, rasterize};
 
 /// Renders every object on the CPU into an image of `width × height`, telling `progress` how many
 /// fragments there are to shade and how many are done.
@@ -43,9 +48,9 @@ pub fn render(
     Ok(Image { width, height, pixels: fb.color })
 }
 
-/// How every object is drawn: blended over what is there, with depth writes, in batches of 128
-/// fragments (the interpreter's lane count).
-const DRAW: DrawOptions = DrawOptions { blend: Blend::PremultipliedOver, depth_write: true, batch: 128 };
+/// How every object is drawn: blended over what is there, with depth writes, in batches of the
+/// interpreter's lane count.
+const DRAW: DrawOptions = DrawOptions { blend: Blend::PremultipliedOver, depth_write: true, batch: LANES };
 
 /// One object after its vertex stage: what the rasterizer needs to draw it.
 struct Vertices<'a> {
@@ -173,7 +178,11 @@ fn vertex_stage<'a>(object: &'a Object) -> Result<Vertices<'a>, RenderError> {
 }
 
 /// Rasterizes `object` into `fb` and runs its fragment stage (with the lights' programs) over the
-/// fragments, in batches.
+/// fragments, in batches shaded on every core of rayon's pool. The rasterizer runs ahead, depth
+/// tests and all, collecting a window of batches; the window is shaded in parallel and blended in
+/// the order the batches came, so the picture is the one-batch-at-a-time picture bit for bit (an
+/// evaluator's result for a batch does not depend on what it evaluated before: `Evaluator::eval`
+/// refills every register a program reads before writing it).
 fn fragment_stage(
     fb: &mut Framebuffer,
     prepared: &Prepared,
@@ -181,39 +190,119 @@ fn fragment_stage(
     vertices: &Vertices,
     progress: &dyn Progress,
 ) -> Result<(), RenderError> {
-    let surface = &object.surface;
-    let frame = &object.frame;
-    // The fragment stage.
-    let mut fragment = Evaluator::<f32>::new(&surface.fragment);
-    bind_textures(&mut fragment, &surface.fragment, object);
-    set_uniforms(&mut fragment, &surface.fragment, surface, frame);
-    let mut lights: Vec<Evaluator<f32>> = prepared
-        .lights
-        .iter()
-        .map(|l| {
-            let mut e = Evaluator::<f32>::new(&l.cpu);
-            // A light's lookups (shadow maps) read the textures loaded for the surface it lights.
-            bind_textures(&mut e, &l.cpu, object);
-            set_spaces(&mut e, &l.cpu, &frame.light_spaces);
-            for (name, value) in &l.values {
-                let _ = e.set(name, value);
-            }
-            set_surface_flags(&mut e, &l.cpu, surface);
-            e
-        })
-        .collect();
-    let output = surface.gpu.interface.output;
-    let carried = &vertices.carried;
-    let shade = |frags: &Fragments, colors: &mut [[f32; 4]]| -> Result<(), RenderError> {
-        shade_batch(frags, colors, carried, &mut fragment, &mut lights, prepared, surface, frame, output)?;
-        progress.advance(frags.count as u64);
+    let shaders = Pool::new(|| Shaders::new(prepared, object));
+    // Enough batches per thread that the threads finish a window at about the same time.
+    let window_len = 32 * rayon::current_num_threads();
+    let mut window: Vec<Fragments> = Vec::with_capacity(window_len);
+    let shade_window = |fb: &mut Framebuffer, window: &mut Vec<Fragments>| -> Result<(), RenderError> {
+        let colours: Vec<Result<Vec<[f32; 4]>, RenderError>> = window
+            .par_iter()
+            .map(|frags| {
+                let mut colours = vec![[0.0f32; 4]; frags.count];
+                shaders.with(|s| s.shade(frags, &mut colours, prepared, object, vertices))?;
+                Ok(colours)
+            })
+            .collect();
+        for (frags, colours) in window.iter().zip(colours) {
+            fb.blend(&frags.pixels, &colours?, DRAW.blend);
+            progress.advance(frags.count as u64);
+        }
+        window.clear();
         Ok(())
     };
-    draw(fb, &vertices.clip, vertices.indices, &vertices.varyings(), &DRAW, shade).map_err(|e| match e {
+    rasterize(fb, &vertices.clip, vertices.indices, &vertices.varyings(), &DRAW, |fb, frags| {
+        window.push(frags.clone());
+        if window.len() >= window_len {
+            shade_window(fb, &mut window)?;
+        }
+        Ok(())
+    })
+    .map_err(|e| match e {
         crate::raster::DrawError::Shade(e) => e,
         other => RenderError::Compile(other.to_string()),
     })?;
-    Ok(())
+    shade_window(fb, &mut window)
+}
+
+/// The evaluators one thread shades an object's fragments with: the fragment stage's and each
+/// light's, their inputs set for the object.
+struct Shaders<'a> {
+    fragment: Evaluator<'a, f32>,
+    lights: Vec<Evaluator<'a, f32>>,
+}
+
+impl<'a> Shaders<'a> {
+    fn new(prepared: &'a Prepared, object: &'a Object) -> Self {
+        let surface = &object.surface;
+        let frame = &object.frame;
+        let mut fragment = Evaluator::<f32>::new(&surface.fragment);
+        bind_textures(&mut fragment, &surface.fragment, object);
+        set_uniforms(&mut fragment, &surface.fragment, surface, frame);
+        let lights = prepared
+            .lights
+            .iter()
+            .map(|l| {
+                let mut e = Evaluator::<f32>::new(&l.cpu);
+                // A light's lookups (shadow maps) read the textures loaded for the surface it lights.
+                bind_textures(&mut e, &l.cpu, object);
+                set_spaces(&mut e, &l.cpu, &frame.light_spaces);
+                for (name, value) in &l.values {
+                    let _ = e.set(name, value);
+                }
+                set_surface_flags(&mut e, &l.cpu, surface);
+                e
+            })
+            .collect();
+        Shaders { fragment, lights }
+    }
+
+    fn shade(
+        &mut self,
+        frags: &Fragments,
+        colours: &mut [[f32; 4]],
+        prepared: &Prepared,
+        object: &Object,
+        vertices: &Vertices,
+    ) -> Result<(), RenderError> {
+        let surface = &object.surface;
+        let output = surface.gpu.interface.output;
+        let (fragment, lights) = (&mut self.fragment, &mut self.lights);
+        shade_batch(
+            frags,
+            colours,
+            &vertices.carried,
+            fragment,
+            lights,
+            prepared,
+            surface,
+            &object.frame,
+            output,
+        )
+    }
+}
+
+/// Values made on demand and reused, one in use per thread at a time: rayon gives no thread-local
+/// state, and making an evaluator per batch would cost more than some batches do.
+struct Pool<T, M> {
+    free: Mutex<Vec<T>>,
+    make: M,
+}
+
+impl<T, M: Fn() -> T> Pool<T, M> {
+    fn new(make: M) -> Self {
+        Pool { free: Mutex::new(Vec::new()), make }
+    }
+
+    /// Runs `f` with a value of the pool (a new one when all are in use).
+    fn with<R>(&self, f: impl FnOnce(&mut T) -> R) -> R {
+        let free = self.free.lock().map(|mut v| v.pop()).unwrap_or_default();
+        let mut value = free.unwrap_or_else(|| (self.make)());
+        let result = f(&mut value);
+        if let Ok(mut free) = self.free.lock() {
+            free.push(value);
+        }
+        result
+    }
 }
 
 /// Uniform inputs of a stage program: every uniform slot the interface or the host knows.

@@ -8,7 +8,43 @@ use crate::backend::cpu::code::{
 };
 use crate::backend::cpu::scalar::{self as s, Real};
 
+/// Expands `$body` once per comparison, with `$f` the comparison's function: matching `op` inside
+/// the lane loop instead would jump through a table at every lane.
+macro_rules! compare_with {
+    ($op:expr, |$f:ident| $body:expr) => {
+        match $op {
+            Compare::Eq => {
+                let $f = PartialEq::eq;
+                $body
+            }
+            Compare::Ne => {
+                let $f = PartialEq::ne;
+                $body
+            }
+            Compare::Lt => {
+                let $f = PartialOrd::lt;
+                $body
+            }
+            Compare::Le => {
+                let $f = PartialOrd::le;
+                $body
+            }
+            Compare::Gt => {
+                let $f = PartialOrd::gt;
+                $body
+            }
+            Compare::Ge => {
+                let $f = PartialOrd::ge;
+                $body
+            }
+        }
+    };
+}
+
 impl<F: Real> Machine<F> {
+    /// Runs one instruction. Inlined, with everything it calls, into each build of
+    /// `Machine::dispatch`, so that the lane loops are compiled for that build's vectors.
+    #[inline(always)]
     pub(super) fn inst(&mut self, inst: &Inst, mask: &Mask) {
         match *inst {
             Inst::Unary { op, dst, a } => float_unary(&mut self.floats, op, dst, a),
@@ -22,8 +58,8 @@ impl<F: Real> Machine<F> {
                 }
             }
             Inst::Compare { op, dst, a, b } => {
-                let f = |x: F, y: F| u32::from(compare(op, x, y));
-                cross2(&self.floats, &mut self.ints, dst, a, b, f);
+                let (from, to) = (&self.floats, &mut self.ints);
+                compare_with!(op, |f| cross2(from, to, dst, a, b, |x: F, y: F| u32::from(f(&x, &y))));
             }
             Inst::IntUnary { op, dst, a } => {
                 let file = &mut self.ints;
@@ -36,10 +72,14 @@ impl<F: Real> Machine<F> {
             }
             Inst::IntBinary { op, dst, a, b } => int_binary(&mut self.ints, op, dst, a, b),
             Inst::IntCompare { op, signed, dst, a, b } => {
+                let file = &mut self.ints;
                 if signed {
-                    same_file2(&mut self.ints, dst, a, b, |x, y| u32::from(compare(op, x as i32, y as i32)));
+                    compare_with!(op, |f| same_file2(file, dst, a, b, |x, y| u32::from(f(
+                        &(x as i32),
+                        &(y as i32)
+                    ))));
                 } else {
-                    same_file2(&mut self.ints, dst, a, b, |x, y| u32::from(compare(op, x, y)));
+                    compare_with!(op, |f| same_file2(file, dst, a, b, |x, y| u32::from(f(&x, &y))));
                 }
             }
             Inst::Convert { op, dst, a } => match op {
@@ -54,22 +94,46 @@ impl<F: Real> Machine<F> {
                 Convert::UintToFloat => cross1(&self.ints, &mut self.floats, dst, a, F::from_u32),
             },
             Inst::Select { float: true, dst, cond, a, b } => {
-                select(&mut self.floats, dst, self.ints.read(cond), a, b);
+                if dst.uniform {
+                    let cond = self.ints.uniform[cond.index as usize];
+                    let u = &mut self.floats.uniform;
+                    u[dst.index as usize] = u[if cond != 0 { a } else { b }.index as usize];
+                } else {
+                    let (d, view) = self.floats.split(dst.index);
+                    select(d, self.ints.read(cond), view.read(a), view.read(b));
+                }
             }
             Inst::Select { float: false, dst, cond, a, b } => {
-                // The condition is in the same file: copy it out first.
-                let cond = lanes_copy(&self.ints, cond);
-                select(&mut self.ints, dst, cond.as_lanes(), a, b);
+                let u = &mut self.ints.uniform;
+                if dst.uniform {
+                    let pick = if u[cond.index as usize] != 0 { a } else { b };
+                    u[dst.index as usize] = u[pick.index as usize];
+                } else {
+                    // The condition is in the destination's file, but never the destination.
+                    let (d, view) = self.ints.split(dst.index);
+                    select(d, view.read(cond), view.read(a), view.read(b));
+                }
             }
             Inst::Move { float: true, dst, src } => store(&mut self.floats, dst, src, mask),
             Inst::Move { float: false, dst, src } => store(&mut self.ints, dst, src, mask),
             Inst::Gather { float, dst, base, len, stride, index, signed } => {
                 let at = Clamp { len, stride, signed };
-                if float {
-                    gather(&mut self.floats, dst, base, self.ints.read(index), at);
+                if dst.uniform {
+                    // A uniform destination has a uniform index.
+                    let i = self.ints.uniform[index.index as usize];
+                    let from = (base.index + at.offset(i)) as usize;
+                    if float {
+                        self.floats.uniform[dst.index as usize] = self.floats.uniform[from];
+                    } else {
+                        self.ints.uniform[dst.index as usize] = self.ints.uniform[from];
+                    }
+                } else if float {
+                    let (d, view) = self.floats.split(dst.index);
+                    gather(d, &view, base, self.ints.read(index), at);
                 } else {
-                    let index = lanes_copy(&self.ints, index);
-                    gather(&mut self.ints, dst, base, index.as_lanes(), at);
+                    // The index is in the destination's file, but never the destination.
+                    let (d, view) = self.ints.split(dst.index);
+                    gather(d, &view, base, view.read(index), at);
                 }
             }
             Inst::Scatter { float, base, len, stride, index, signed, src } => {
@@ -134,17 +198,7 @@ impl<F: Real> Machine<F> {
     }
 }
 
-fn compare<T: PartialOrd>(op: Compare, x: T, y: T) -> bool {
-    match op {
-        Compare::Eq => x == y,
-        Compare::Ne => x != y,
-        Compare::Lt => x < y,
-        Compare::Le => x <= y,
-        Compare::Gt => x > y,
-        Compare::Ge => x >= y,
-    }
-}
-
+#[inline(always)]
 fn float_unary<F: Real>(file: &mut File<F>, op: Unary, dst: Reg, a: Reg) {
     // One call per arm, so that each operation gets its own (inlined, vectorizable) loop rather
     // than a call through a function pointer per lane.
@@ -170,6 +224,7 @@ fn float_unary<F: Real>(file: &mut File<F>, op: Unary, dst: Reg, a: Reg) {
     }
 }
 
+#[inline(always)]
 fn float_binary<F: Real>(file: &mut File<F>, op: Binary, dst: Reg, a: Reg, b: Reg) {
     // The four commonest operations get their own loops so that they vectorize.
     match op {
@@ -186,6 +241,7 @@ fn float_binary<F: Real>(file: &mut File<F>, op: Binary, dst: Reg, a: Reg, b: Re
     }
 }
 
+#[inline(always)]
 fn int_binary(file: &mut File<u32>, op: IntBinary, dst: Reg, a: Reg, b: Reg) {
     let i = |x: u32| x as i32;
     match op {
@@ -266,14 +322,9 @@ fn cross2<A: Copy, D: Copy>(
     }
 }
 
-fn select<T: Copy>(file: &mut File<T>, dst: Reg, cond: Lanes<'_, u32>, a: Reg, b: Reg) {
-    if dst.uniform {
-        let u = &mut file.uniform;
-        u[dst.index as usize] = if cond.at(0) != 0 { u[a.index as usize] } else { u[b.index as usize] };
-        return;
-    }
-    let (d, view) = file.split(dst.index);
-    let (a, b) = (view.read(a), view.read(b));
+/// `d[l] = cond[l] != 0 ? a[l] : b[l]`.
+#[inline(always)]
+fn select<T: Copy>(d: &mut [T; LANES], cond: Lanes<'_, u32>, a: Lanes<'_, T>, b: Lanes<'_, T>) {
     match cond {
         Lanes::Uniform(c) => map1(d, if c != 0 { a } else { b }, |x| x),
         Lanes::Varying(c) => map3(d, Lanes::Varying(c), a, b, |c, a, b| if c != 0 { a } else { b }),
@@ -281,6 +332,7 @@ fn select<T: Copy>(file: &mut File<T>, dst: Reg, cond: Lanes<'_, u32>, a: Reg, b
 }
 
 /// A store into a variable: only the lanes of the mask change.
+#[inline(always)]
 fn store<T: Copy>(file: &mut File<T>, dst: Reg, src: Reg, mask: &Mask) {
     if dst == src {
         return;
@@ -319,21 +371,33 @@ impl Clamp {
         let i = if self.signed { (raw as i32).clamp(0, last as i32) as u32 } else { raw.min(last) };
         i * self.stride
     }
+
+    /// The offset of the last element.
+    #[inline(always)]
+    fn last_offset(self) -> u32 {
+        self.len.saturating_sub(1) * self.stride
+    }
 }
 
-fn gather<T: Copy>(file: &mut File<T>, dst: Reg, base: Reg, index: Lanes<'_, u32>, at: Clamp) {
-    if dst.uniform {
-        let from = base.index + at.offset(index.at(0));
-        file.uniform[dst.index as usize] = file.uniform[from as usize];
-        return;
-    }
-    let (d, view): (&mut [T; LANES], View<'_, T>) = file.split(dst.index);
+/// `d[l] = array[index[l]]`, for a varying destination.
+#[inline(always)]
+fn gather<T: Copy>(d: &mut [T; LANES], view: &View<'_, T>, base: Reg, index: Lanes<'_, u32>, at: Clamp) {
     match (base.uniform, index) {
         (true, Lanes::Uniform(i)) => d.fill(view.uniform(base.index + at.offset(i))),
         // A table lookup (a permutation, a colour table): the commonest gather in the stdlib.
         (true, Lanes::Varying(index)) => {
-            for (d, i) in d.iter_mut().zip(index) {
-                *d = view.uniform(base.index + at.offset(*i));
+            let table = view.uniforms(base.index as usize, at.last_offset() as usize + 1);
+            // Clamped offsets are at most the table's last; the `min` says so to the compiler,
+            // which then needs no bounds check per lane. One loop per signedness, so that no lane
+            // tests it.
+            let (top, stride) = (table.len().saturating_sub(1), at.stride as usize);
+            let last = at.len.saturating_sub(1);
+            let lookup = |i: u32| table[(i as usize * stride).min(top)];
+            if at.signed {
+                let last = last.min(i32::MAX as u32) as i32;
+                map1(d, Lanes::Varying(index), |i| lookup((i as i32).max(0).min(last) as u32));
+            } else {
+                map1(d, Lanes::Varying(index), |i| lookup(i.min(last)));
             }
         }
         (false, Lanes::Uniform(i)) => *d = *view.varying(base.index + at.offset(i)),
@@ -345,6 +409,7 @@ fn gather<T: Copy>(file: &mut File<T>, dst: Reg, base: Reg, index: Lanes<'_, u32
     }
 }
 
+#[inline(always)]
 fn scatter<T: Copy>(file: &mut File<T>, base: Reg, index: Lanes<'_, u32>, src: Reg, at: Clamp, mask: &Mask) {
     if base.uniform {
         let to = base.index + at.offset(index.at(0));
@@ -375,6 +440,7 @@ impl<T: Copy> Copied<T> {
     }
 }
 
+#[inline(always)]
 fn lanes_copy<T: Copy>(file: &File<T>, r: Reg) -> Copied<T> {
     match file.read(r) {
         Lanes::Varying(v) => Copied::Varying(*v),

@@ -37,11 +37,13 @@ impl<T: Copy> File<T> {
     }
 
     /// The lanes of a varying register.
+    #[inline(always)]
     pub fn lanes_mut(&mut self, r: Reg) -> &mut [T; LANES] {
         &mut self.varying[r.index as usize]
     }
 
     /// Sets every lane of a register (the one value of a uniform one).
+    #[inline(always)]
     pub fn fill(&mut self, r: Reg, x: T) {
         if r.uniform {
             self.uniform[r.index as usize] = x;
@@ -51,11 +53,13 @@ impl<T: Copy> File<T> {
     }
 
     /// The value of a register in `lane`.
+    #[inline(always)]
     pub fn at(&self, r: Reg, lane: usize) -> T {
         if r.uniform { self.uniform[r.index as usize] } else { self.varying[r.index as usize][lane] }
     }
 
     /// A source operand of an instruction whose destination is in another file.
+    #[inline(always)]
     pub fn read(&self, r: Reg) -> Lanes<'_, T> {
         if r.uniform {
             Lanes::Uniform(self.uniform[r.index as usize])
@@ -67,6 +71,7 @@ impl<T: Copy> File<T> {
     /// The varying destination `dst` and a reader for the rest of the file. An instruction never
     /// reads its own destination (the lowering allocates a fresh one), which is what lets the two
     /// borrows coexist.
+    #[inline(always)]
     pub fn split(&mut self, dst: u32) -> (&mut [T; LANES], View<'_, T>) {
         let (lo, rest) = self.varying.split_at_mut(dst as usize);
         let (d, hi) = rest.split_first_mut().expect("destination register exists");
@@ -83,6 +88,7 @@ pub(crate) struct View<'a, T> {
 }
 
 impl<'a, T: Copy> View<'a, T> {
+    #[inline(always)]
     pub fn read(&self, r: Reg) -> Lanes<'a, T> {
         if r.uniform {
             return Lanes::Uniform(self.uniform[r.index as usize]);
@@ -97,6 +103,7 @@ impl<'a, T: Copy> View<'a, T> {
     }
 
     /// The varying register `index + offset` of an array (never the destination).
+    #[inline(always)]
     pub fn varying(&self, index: u32) -> &'a [T; LANES] {
         match self.read(Reg::varying(index)) {
             Lanes::Varying(v) => v,
@@ -104,7 +111,14 @@ impl<'a, T: Copy> View<'a, T> {
         }
     }
 
+    /// The uniform registers `start..start + len` (an array's, all within the file).
+    #[inline(always)]
+    pub fn uniforms(&self, start: usize, len: usize) -> &'a [T] {
+        &self.uniform[start..start + len]
+    }
+
     /// The uniform register `index`.
+    #[inline(always)]
     pub fn uniform(&self, index: u32) -> T {
         self.uniform[index as usize]
     }

@@ -240,6 +240,18 @@ impl<'a> Lower<'a> {
     /// Registers for every local, per light for per-light ones (the parameters first, in order).
     fn allocate(&mut self) {
         let lights = self.binding.lights.len();
+        let mut stores = crate::ir::stores::stores(self.shader);
+        // `ir::stores` sees a built-in's outputs only in a statement of its own; one called inside
+        // an expression (`float has = surface("tint", tint)`) writes its argument too.
+        for e in &self.shader.exprs {
+            if let ExprKind::Builtin(b, args) = &e.kind {
+                for (p, a) in b.params.iter().zip(args) {
+                    if let (true, ExprKind::Local(l)) = (p.output, &self.shader.expr(*a).kind) {
+                        stores[l.0 as usize].count += 1;
+                    }
+                }
+            }
+        }
         let mut order: Vec<LocalId> = self.shader.params.clone();
         order.extend(
             (0..self.shader.locals.len() as u32).map(LocalId).filter(|id| !self.shader.params.contains(id)),
@@ -250,7 +262,7 @@ impl<'a> Lower<'a> {
                 if local.rate.perlight { (0..lights).map(Some).collect() } else { vec![None] };
             for light in instances {
                 let Some((float, n)) = layout(local.ty) else { continue };
-                let uniform = uniform_rate(local.rate.frequency);
+                let uniform = uniform_rate(local.rate.frequency) || self.is_table(id, &stores);
                 let kind = match local.kind {
                     LocalKind::Param { output, .. } => SlotKind::Param { output },
                     _ if Some(id) == self.shader.result_local => SlotKind::Result,
@@ -265,6 +277,23 @@ impl<'a> Lower<'a> {
                 self.local_slot.insert((id, light), self.slots.len() - 1);
             }
         }
+    }
+
+    /// Whether a varying variable holds the same value in every lane wherever it is read, so that
+    /// uniform registers can hold it: its only store is its declaration, of a constant (a table
+    /// such as a noise permutation, which RenderMan's rules make varying at file scope). Only
+    /// constants: a per-draw value may still reach the interpreter as a varying input.
+    /// It is read only in its scope, after that store, which gave each lane the same value
+    /// whatever the mask. Storing it once per batch rather than per lane, and reading it as a
+    /// uniform table, is what makes lookups into it cheap.
+    fn is_table(&self, id: LocalId, stores: &[crate::ir::stores::Stores]) -> bool {
+        let local = self.shader.local(id);
+        local.kind == LocalKind::Var
+            && Some(id) != self.shader.result_local
+            && !local.rate.perlight
+            && stores[id.0 as usize]
+                .only_initialiser(local.span)
+                .is_some_and(|value| self.shader.expr(value).rate.frequency == Frequency::Constant)
     }
 
     /// The registers of a local (for the current light when it is per-light).

@@ -293,7 +293,26 @@ impl<'a> Lower<'a> {
             && !local.rate.perlight
             && stores[id.0 as usize]
                 .only_initialiser(local.span)
-                .is_some_and(|value| self.shader.expr(value).rate.frequency == Frequency::Constant)
+                .is_some_and(|value| self.literal_only(value))
+    }
+
+    /// Whether `id` is made of literals by operators, conversions and constructors alone. A rate
+    /// of constant is not enough: a texture lookup of a literal name has it, yet its expansion
+    /// reads `s` and `t`.
+    fn literal_only(&self, id: ExprId) -> bool {
+        let e = self.shader.expr(id);
+        if e.rate.frequency != Frequency::Constant {
+            return false;
+        }
+        match &e.kind {
+            ExprKind::Literal(_) => true,
+            ExprKind::Unary(..) | ExprKind::Binary(..) | ExprKind::Convert(_) | ExprKind::Construct(_) => {
+                let mut all = true;
+                e.kind.for_each_operand(|op| all &= self.literal_only(op));
+                all
+            }
+            _ => false,
+        }
     }
 
     /// The registers of a local (for the current light when it is per-light).

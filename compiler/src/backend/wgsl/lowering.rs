@@ -9,7 +9,8 @@
 //! driver maps to its instructions (fused multiply-adds, reciprocal square roots), as a graphics
 //! programmer would write them. Both keep the language's defined results that WGSL leaves
 //! undefined (`pow` of a negative base, `mod`, clamped indices, `random`), so the two differ only
-//! in rounding: docs/numerics.md gives the fast lowering's error per standard library function.
+//! in rounding: docs/numerics.md gives the fast lowering's measured bounds per family of built-ins,
+//! docs/stability.md its error against f64 per standard library function.
 
 /// How the WGSL backend writes built-ins whose WGSL form rounds differently from the interpreter.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]

@@ -1,5 +1,6 @@
 //! Which statements store into each local: for the analyses that treat a variable written once,
-//! by its declaration, as a value (constant tables in `sema::rates` and `backend::wgsl`).
+//! by its declaration, as a value (constant tables in `sema::rates`, `backend::wgsl` and the
+//! interpreter's uniform tables).
 
 use super::{Block, ExprId, ExprKind, Place, Shader, Stmt};
 use crate::source::Span;
@@ -26,33 +27,32 @@ impl Stores {
 /// The stores into each local of `shader`, by local index.
 pub fn stores(shader: &Shader) -> Vec<Stores> {
     let mut out = vec![Stores::default(); shader.locals.len()];
-    walk(shader, &shader.body, &mut out);
+    walk(&shader.body, &mut out);
+    // A built-in's output arguments are written wherever the call stands: in a statement of its
+    // own or inside an expression (`float has = surface("tint", tint)`).
+    for e in &shader.exprs {
+        if let ExprKind::Builtin(b, args) = &e.kind {
+            for (p, a) in b.params.iter().zip(args) {
+                if let (true, ExprKind::Local(l)) = (p.output, &shader.expr(*a).kind) {
+                    out[l.0 as usize].count += 1;
+                }
+            }
+        }
+    }
     out
 }
 
-fn walk(shader: &Shader, block: &Block, out: &mut [Stores]) {
+fn walk(block: &Block, out: &mut [Stores]) {
     for stmt in block {
-        match stmt {
-            Stmt::Store { place, value, span } => {
-                if let Some(l) = place.root_local() {
-                    let entry = &mut out[l.0 as usize];
-                    entry.count += 1;
-                    if matches!(place, Place::Local(_)) {
-                        entry.whole = Some((*value, *span));
-                    }
-                }
+        if let Stmt::Store { place, value, span } = stmt
+            && let Some(l) = place.root_local()
+        {
+            let entry = &mut out[l.0 as usize];
+            entry.count += 1;
+            if matches!(place, Place::Local(_)) {
+                entry.whole = Some((*value, *span));
             }
-            Stmt::Eval(id) => {
-                if let ExprKind::Builtin(b, args) = &shader.expr(*id).kind {
-                    for (p, a) in b.params.iter().zip(args) {
-                        if let (true, ExprKind::Local(l)) = (p.output, &shader.expr(*a).kind) {
-                            out[l.0 as usize].count += 1;
-                        }
-                    }
-                }
-            }
-            _ => {}
         }
-        stmt.for_each_block(|b| walk(shader, b, out));
+        stmt.for_each_block(|b| walk(b, out));
     }
 }

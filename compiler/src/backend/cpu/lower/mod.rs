@@ -240,18 +240,7 @@ impl<'a> Lower<'a> {
     /// Registers for every local, per light for per-light ones (the parameters first, in order).
     fn allocate(&mut self) {
         let lights = self.binding.lights.len();
-        let mut stores = crate::ir::stores::stores(self.shader);
-        // `ir::stores` sees a built-in's outputs only in a statement of its own; one called inside
-        // an expression (`float has = surface("tint", tint)`) writes its argument too.
-        for e in &self.shader.exprs {
-            if let ExprKind::Builtin(b, args) = &e.kind {
-                for (p, a) in b.params.iter().zip(args) {
-                    if let (true, ExprKind::Local(l)) = (p.output, &self.shader.expr(*a).kind) {
-                        stores[l.0 as usize].count += 1;
-                    }
-                }
-            }
-        }
+        let stores = crate::ir::stores::stores(self.shader);
         let mut order: Vec<LocalId> = self.shader.params.clone();
         order.extend(
             (0..self.shader.locals.len() as u32).map(LocalId).filter(|id| !self.shader.params.contains(id)),

@@ -68,8 +68,13 @@ fn shader(cases: &[Case]) -> (String, Vec<(String, Tol)>) {
 
 /// `o12m3_0` -> `c12a`: the parameters of the case an output belongs to.
 fn related(output: &str) -> String {
-    let digits: String = output.chars().skip(1).take_while(|c| c.is_ascii_digit()).collect();
-    if output.starts_with('o') && !digits.is_empty() { format!("c{digits}a") } else { String::new() }
+    case_index(output).map_or_else(String::new, |i| format!("c{i}a"))
+}
+
+/// `o12m3_0` -> 12: the case an output belongs to.
+fn case_index(output: &str) -> Option<usize> {
+    let digits: String = output.strip_prefix('o')?.chars().take_while(|c| c.is_ascii_digit()).collect();
+    digits.parse().ok()
 }
 
 /// The domain of a case parameter `c{i}a{k}{u,v}`.
@@ -107,9 +112,7 @@ fn run_lowered(cases: &[Case], lights: &[LightBinding], lowering: Lowering) {
     let (src, mut outputs) = shader(cases);
     if lowering == Lowering::Fast {
         for (name, tol) in &mut outputs {
-            let case =
-                related(name).strip_prefix('c').and_then(|i| i.trim_end_matches('a').parse::<usize>().ok());
-            let projective = case.is_some_and(|i| {
+            let projective = case_index(name).is_some_and(|i| {
                 let c = &cases[i];
                 c.outs.iter().any(|(ty, _)| *ty == "point") && c.args.iter().any(|(ty, _)| *ty == "matrix")
             });

@@ -57,10 +57,7 @@ impl Translator<'_> {
             return self.colour_to_rgb(space, v, span);
         }
         if self.fast() && ty.base != Base::Matrix4 {
-            return Ok(match self.space_matrices(space) {
-                Some((to_m, from_m)) => self.apply_matrix(v, Rule::of(ty.base), from_m, to_m),
-                None => v,
-            });
+            return Ok(self.by_space(v, Rule::of(ty.base), space, false));
         }
         let (to_m, from_m) = self.space_entries(space);
         if ty.base == Base::Matrix4 {
@@ -93,28 +90,22 @@ impl Translator<'_> {
         if self.fast() {
             // Spaces by their matrices; a matrix argument too, except for a normal, whose
             // inverse WGSL has no built-in for.
-            let by_space = |this: &mut Self, v: Value, space: &str, to: bool| match this.space_matrices(space)
-            {
-                Some((to_m, from_m)) if to => this.apply_matrix(v, rule, to_m, from_m),
-                Some((to_m, from_m)) => this.apply_matrix(v, rule, from_m, to_m),
-                None => v,
-            };
             match args.len() {
                 2 if is_string(self, 0) => {
                     let to = self.space_name(args[0], span)?;
-                    return Ok(by_space(self, vals[last], &to, true));
+                    return Ok(self.by_space(vals[last], rule, &to, true));
                 }
                 3 if is_string(self, 1) => {
                     let (from, to) = (self.space_name(args[0], span)?, self.space_name(args[1], span)?);
-                    let current = by_space(self, vals[last], &from, false);
-                    return Ok(by_space(self, current, &to, true));
+                    let current = self.by_space(vals[last], rule, &from, false);
+                    return Ok(self.by_space(current, rule, &to, true));
                 }
                 3 if rule != Rule::Normal => {
                     let from = self.space_name(args[0], span)?;
-                    let current = by_space(self, vals[last], &from, false);
-                    return Ok(self.apply_matrix(current, rule, vals[1], vals[1]));
+                    let current = self.by_space(vals[last], rule, &from, false);
+                    return Ok(self.apply_matrix(current, rule, vals[1]));
                 }
-                2 if rule != Rule::Normal => return Ok(self.apply_matrix(vals[1], rule, vals[0], vals[0])),
+                2 if rule != Rule::Normal => return Ok(self.apply_matrix(vals[1], rule, vals[0])),
                 _ => {}
             }
         }
@@ -150,26 +141,28 @@ impl Translator<'_> {
         Ok(self.vector(&out))
     }
 
-    /// The matrices of a named space, (current to it, it to current), from the uniform block;
-    /// `None` for "current" and "camera", which are the identity (the fast lowering's
-    /// [`Translator::apply_matrix`] then leaves values as they are).
-    fn space_matrices(&mut self, space: &str) -> Option<(Value, Value)> {
+    /// The fast lowering's conversion of `v` to the named space (`to`) or from it to "current":
+    /// by the one matrix of the uniform block that `rule` needs (a normal goes by the inverse
+    /// transpose, so by the other direction's matrix); "current" and "camera" are the identity.
+    fn by_space(&mut self, v: Value, rule: Rule, space: &str, to: bool) -> Value {
         if matches!(space, "current" | "camera") {
-            return None;
+            return v;
         }
-        Some((self.space_matrix(space, false), self.space_matrix(space, true)))
+        // `space_matrix(space, false)` is current to the space, `true` the space to current.
+        let matrix = self.space_matrix(space, to == (rule == Rule::Normal));
+        self.apply_matrix(v, rule, matrix)
     }
 
     /// The fast lowering's `transform`: `v` by the language matrix `m` under `rule` as WGSL
-    /// matrix products (`inv`, `m`'s inverse, only for normals). A language row is a WGSL
-    /// column, so the row vector `(v, 1) M` is `m * vec4(v, 1)`, and a normal's `n inv(M)^T`
-    /// is `vec4(n, 0) * inv`.
-    fn apply_matrix(&mut self, v: Value, rule: Rule, m: Value, inv: Value) -> Value {
+    /// matrix products, where for a normal `m` is the inverse of the transformation. A language
+    /// row is a WGSL column, so the row vector `(v, 1) M` is `m * vec4(v, 1)`, and a normal's
+    /// `n inv(M)^T` is `vec4(n, 0) * m`.
+    fn apply_matrix(&mut self, v: Value, rule: Rule, m: Value) -> Value {
         let w = self.float(if rule == Rule::Point { 1.0 } else { 0.0 });
         let ty = self.mb.ty(Type::of(Base::Float4), false);
         let v4 = self.fb.add(Expression::Compose { ty, components: vec![v, w] });
         let product = match rule {
-            Rule::Normal => self.binary(Op::Multiply, v4, inv),
+            Rule::Normal => self.binary(Op::Multiply, v4, m),
             _ => self.binary(Op::Multiply, m, v4),
         };
         let xyz = self.xyz(product);

@@ -263,6 +263,11 @@ fn splines() {
 }
 
 #[test]
+fn array_reads() {
+    run_cases(&cases::array_reads(), &[]);
+}
+
+#[test]
 fn light_sums() {
     run_cases(&cases::light_sums(), &cases::light_sum_lights());
 }

@@ -752,6 +752,11 @@ fn stanford_vector_functions_and_select() {
 }
 
 #[test]
+fn array_reads() {
+    run_group("arrays", cases::array_reads(), &[], same);
+}
+
+#[test]
 fn strings_are_folded() {
     run_group("strings", cases::strings_are_folded(), &[], same);
 }

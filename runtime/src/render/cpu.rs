@@ -76,7 +76,8 @@ impl Vertices<'_> {
 
 /// A varying's source, as the WGSL backend's entry point names it.
 enum Carried {
-    Global(String),
+    /// A predefined variable, and those that are equal to it on entry (the interface's `also`).
+    Global(String, Vec<String>),
     Param(String),
     Transfer(String),
 }
@@ -137,7 +138,7 @@ fn vertex_stage<'a>(object: &'a Object) -> Result<Vertices<'a>, RenderError> {
             if object_colour(frame, &name).is_some()
                 || geometry.first().and_then(|g| g.global(&name, stanford)).is_some()
             {
-                Carried::Global(name)
+                Carried::Global(name, v.also.clone())
             } else {
                 Carried::Param(name)
             }
@@ -153,7 +154,7 @@ fn vertex_stage<'a>(object: &'a Object) -> Result<Vertices<'a>, RenderError> {
         }
         for i in 0..count {
             let values: Vec<f32> = match what {
-                Carried::Global(name) => match object_colour(frame, name) {
+                Carried::Global(name, _) => match object_colour(frame, name) {
                     Some(c) => c.iter().map(|x| *x as f32).collect(),
                     None => geometry[i].global(name, stanford).unwrap_or_default(),
                 },
@@ -347,16 +348,19 @@ fn shade_batch(
         col
     };
     for (what, offset, width, _) in carried {
-        let name = match what {
-            Carried::Global(name) | Carried::Param(name) | Carried::Transfer(name) => name.clone(),
+        let names = match what {
+            Carried::Global(name, also) => std::iter::once(name).chain(also).collect(),
+            Carried::Param(name) | Carried::Transfer(name) => vec![name],
         };
-        columns.push((name.clone(), column(*offset, *width, Fragments::values_of)));
-        if !matches!(what, Carried::Transfer(_)) {
-            // The derivative seeds: the rasterizer's analytic screen derivatives (seeds of a
-            // float4 P are its xyz).
-            let seed_width = if stanford && name == "P" { 3 } else { *width };
-            columns.push((format!("dx({name})"), column(*offset, seed_width, Fragments::ddx_of)));
-            columns.push((format!("dy({name})"), column(*offset, seed_width, Fragments::ddy_of)));
+        for name in names {
+            columns.push((name.clone(), column(*offset, *width, Fragments::values_of)));
+            if !matches!(what, Carried::Transfer(_)) {
+                // The derivative seeds: the rasterizer's analytic screen derivatives (seeds of a
+                // float4 P are its xyz).
+                let seed_width = if stanford && name == "P" { 3 } else { *width };
+                columns.push((format!("dx({name})"), column(*offset, seed_width, Fragments::ddx_of)));
+                columns.push((format!("dy({name})"), column(*offset, seed_width, Fragments::ddy_of)));
+            }
         }
     }
     if program.slot(POINT_INDEX).is_some() {

@@ -558,6 +558,19 @@ pub fn splines() -> Vec<Case> {
     ]
 }
 
+/// Reads of arrays at run-time indices, in range and out of it (clamped to the ends): a short
+/// array's read is a chain of selects in the WGSL, a longer one's a read through a pointer.
+pub fn array_reads() -> Vec<Case> {
+    let e = tol::EXACT;
+    let i = ("int", ints(-3.0, 8.0, &[]));
+    vec![
+        c1("$o = $1[$0];", &[i, ("float[2]", R4)], F, e),
+        c1("$o = $1[$0] + $1[$0 + 1];", &[i, ("float[4]", R4)], F, e),
+        c1("$o = $1[$0];", &[i, ("color[3]", R4)], "color", e),
+        c1("$o = $1[$0];", &[i, ("float[5]", R4)], F, e),
+    ]
+}
+
 pub fn light_sums() -> Vec<Case> {
     let n = ("normal", R1);
     let v = ("vector", R1);

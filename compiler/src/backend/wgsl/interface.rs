@@ -290,6 +290,10 @@ pub struct Varying {
     pub components: u32,
     /// Whether it is not interpolated (integers and booleans).
     pub flat: bool,
+    /// Predefined variables the fragment stage also fills from it, being equal on entry (`I`
+    /// carried by `in_P`, `s` and `t` by `in_u` and `in_v`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub also: Vec<String>,
 }
 
 /// A texture the program reads: group 1, `binding`, fetched with `textureLoad` (no sampler).

@@ -169,3 +169,25 @@ fn a_table_read_whole_stays_a_module_variable() {
     );
     assert_eq!(p.module.global_variables.iter().filter(|(_, g)| g.init.is_some()).count(), 1);
 }
+
+#[test]
+fn a_short_arrays_run_time_reads_are_selects() {
+    let src = "surface t(float a[3] = {1, 2, 3}; float b[5] = {1, 2, 3, 4, 5}) {\n\
+               int i = int(s * 8) - 2; Ci = color(a[i], b[i], 0); }";
+    let wgsl = program(src, None).wgsl().unwrap();
+    // The index is clamped to the last element in both; only the longer array is then indexed.
+    assert!(wgsl.contains("4u)]"), "{wgsl}");
+    assert!(wgsl.contains("2u)"), "{wgsl}");
+    assert!(!wgsl.contains("2u)]"), "{wgsl}");
+}
+
+#[test]
+fn i_crosses_in_the_varying_of_p() {
+    let plastic = include_str!("../../../../examples/shaders/plastic.sl");
+    let lights = include_str!("../../../../examples/shaders/lights.sl");
+    let p = program(plastic, Some(lights));
+    let varyings = &p.interface.varyings;
+    assert!(!varyings.iter().any(|v| v.name == "in_I"), "{varyings:?}");
+    let in_p = varyings.iter().find(|v| v.name == "in_P").expect("P crosses");
+    assert_eq!(in_p.also, ["I"]);
+}

@@ -1,4 +1,4 @@
-// The vertex stage, the plane's (s, t), improved noise, the trivial shader and fBm. The Rust side
+// The vertex stages (a full-screen quad's, and a surface's with its position and normal), the plane's (s, t), improved noise, the trivial shader and fBm. The Rust side
 // puts before this: PERM (Perlin's permutation), PLANE_SPAN and the shaders' constants.
 
 struct Varyings {
@@ -12,6 +12,33 @@ fn vs_main(@location(0) position: vec3f) -> Varyings {
     out.position = vec4f(position.xy, 0.5, 1.0);
     out.uv = vec2f(position.x * 0.5 + 0.5, 0.5 - position.y * 0.5);
     return out;
+}
+
+// What a mesh's vertex stage hands a surface shader: the position and normal in the camera's
+// space (the plane at z = 2 facing the camera, 4 wide in view) and the texture coordinates.
+struct Surface {
+    @builtin(position) position: vec4f,
+    @location(0) p: vec3f,
+    @location(1) n: vec3f,
+    @location(2) uv: vec2f,
+};
+
+@vertex
+fn vs_surface(@location(0) position: vec3f) -> Surface {
+    var out: Surface;
+    out.position = vec4f(position.xy, 0.5, 1.0);
+    out.p = vec3f(2.0 * position.x, 2.0 * position.y, 2.0);
+    out.n = vec3f(0.0, 0.0, -1.0);
+    out.uv = vec2f(position.x * 0.5 + 0.5, 0.5 - position.y * 0.5);
+    return out;
+}
+
+// The shading normal as RenderMan's faceforward(normalize(N), I) gives it: turned towards the eye
+// by the geometric normal, which comes from the position's screen derivatives on N's side.
+fn facing_normal(in: Surface) -> vec3f {
+    let c = normalize(cross(dpdy(in.p), dpdx(in.p)));
+    let ng = select(-c, c, dot(c, in.n) >= 0.0);
+    return faceForward(normalize(in.n), in.p, ng);
 }
 
 // The Patina plane's (s, t) at a point of the screen: the plane reaches past the view, which

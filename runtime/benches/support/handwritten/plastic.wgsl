@@ -1,5 +1,6 @@
 // Plastic (RenderMan's: ambient, diffuse and specular sums) under four point lights whose
-// camera-space positions and colours (intensity / distance^2 follows) come from the uniforms.
+// camera-space positions and colours (intensity / distance^2 follows) come from the uniforms, at
+// the interpolated position and normal.
 
 struct Lights {
     position: array<vec4f, 4>,
@@ -8,10 +9,9 @@ struct Lights {
 @group(0) @binding(0) var<uniform> lights: Lights;
 
 @fragment
-fn plastic4(in: Varyings) -> @location(0) vec4f {
-    // The plane in the camera's space: z = 2, 4 wide.
-    let p = vec3f(in.uv.x * 4.0 - 2.0, 2.0 - in.uv.y * 4.0, 2.0);
-    let n = faceForward(vec3f(0.0, 0.0, -1.0), p, vec3f(0.0, 0.0, -1.0));
+fn plastic4(in: Surface) -> @location(0) vec4f {
+    let p = in.p;
+    let n = facing_normal(in);
     let v = -normalize(p);
     let cs = vec3f(1.0);
     var diffuse = vec3f(0.0);

@@ -114,12 +114,11 @@ fn hart_wood(p: vec3f, dpx: vec3f, dpy: vec3f) -> vec3f {
 }
 
 @fragment
-fn wood(in: Varyings) -> @location(0) vec4f {
+fn wood(in: Surface) -> @location(0) vec4f {
     let st = plane_st(in.uv);
     // The plane's object space is 2 wide, y up.
     let p = WOOD_SCALE * vec3f(2.0 * st.x - 1.0, 1.0 - 2.0 * st.y, 0.0);
     let colour = hart_wood(p, dpdx(p), dpdy(p));
-    // Matte, under an ambient light and a distant one, the plane facing the camera.
-    let n = vec3f(0.0, 0.0, -1.0);
-    return vec4f(colour * (0.35 + 0.75 * max(0.0, dot(WOOD_LIGHT, n))), 1.0);
+    // Matte, under an ambient light and a distant one.
+    return vec4f(colour * (0.35 + 0.75 * max(0.0, dot(WOOD_LIGHT, facing_normal(in)))), 1.0);
 }

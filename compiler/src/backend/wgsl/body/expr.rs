@@ -9,6 +9,10 @@ use crate::ir::types::{Base, Type};
 use crate::ir::{BinaryOp, ExprId, ExprKind, Literal, UnaryOp};
 use crate::source::Span as SrcSpan;
 
+/// The longest array whose run-time-indexed reads are written as a chain of selects (a colour
+/// ramp's or a spline's few knots); longer ones are read through a pointer.
+const SELECTED_ARRAY_MAX: u32 = 4;
+
 impl Translator<'_> {
     /// The value of an expression (computed once per statement and light).
     pub fn expr(&mut self, id: ExprId) -> Result<Value, Diagnostic> {
@@ -102,6 +106,26 @@ impl Translator<'_> {
                 if let Some(c) = self.constant_index(*index, bt) {
                     let v = self.expr(*base)?;
                     self.fb.add(Expression::AccessIndex { base: v, index: c })
+                } else if bt.is_array()
+                    && bt.array.is_some_and(|n| n <= SELECTED_ARRAY_MAX)
+                    && !matches!(bt.base, Base::Matrix3 | Base::Matrix4)
+                {
+                    // A short array's element as a chain of selects over its elements: reads at
+                    // constant indices leave the array in registers, where a read at a run-time
+                    // index puts it in memory (lavapipe: scratch, a gather per read; GPUs: local
+                    // memory). The clamped index picks the same element either way.
+                    let n = bt.array.unwrap_or(1);
+                    let v = self.expr(*base)?;
+                    let i = self.index(*index, bt)?;
+                    let mut element = self.fb.add(Expression::AccessIndex { base: v, index: 0 });
+                    for j in 1..n {
+                        let e = self.fb.add(Expression::AccessIndex { base: v, index: j });
+                        let at = self.fb.add(Expression::Literal(NLit::U32(j)));
+                        let hit = self.binary(naga::BinaryOperator::Equal, i, at);
+                        element =
+                            self.fb.add(Expression::Select { condition: hit, accept: e, reject: element });
+                    }
+                    element
                 } else if bt.is_array() {
                     // Arrays are indexed through a pointer (naga indexes array values only by
                     // constants): the variable's own, or a temporary's.

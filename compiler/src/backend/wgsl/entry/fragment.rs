@@ -77,6 +77,11 @@ pub(super) fn fragment_entry(
         };
         let p = t.pointer(var);
         t.store(p, value);
+        for g in &c.also {
+            let var = t.global_var(g.name, Type::of(g.ty), false);
+            let p = t.pointer(var);
+            t.store(p, value);
+        }
     }
     if !shader.stanford && uses.has_global("E") {
         let var = t.global_var("E", Type::of(Base::Point), false);

@@ -61,12 +61,21 @@ pub(crate) fn mesh_attributes_read(needed: impl Fn(&str) -> bool, stanford: bool
         .collect()
 }
 
+/// Predefined variables of a RenderMan surface that the vertex entry point sets to another's
+/// value (`I` is `P` in camera space; `s` and `t` are `u` and `v`), as (variable, the one whose
+/// value it takes). When both cross to the fragment stage, one varying carries them: each
+/// varying costs an interpolation per component at every fragment.
+pub(crate) const SAME_ON_ENTRY: [(&str, &str); 3] = [("I", "P"), ("s", "u"), ("t", "v")];
+
 /// A value that crosses from the vertex to the fragment stage.
 pub(crate) struct Crossing {
     pub name: String,
     pub ty: Type,
     /// What fills it in the vertex stage and what it fills in the fragment stage.
     pub what: Carried,
+    /// Predefined variables the fragment stage also fills from it: those [`SAME_ON_ENTRY`] makes
+    /// equal to a [`Carried::Global`].
+    pub also: Vec<&'static crate::sema::globals::Global>,
 }
 
 /// What a varying carries.
@@ -133,14 +142,26 @@ pub(crate) fn entry_points(
     let refilled = |name: &str| {
         !surface.stanford && matches!(name, "Cs" | "Os" | "Ng") && fragment_uses.has_global(name)
     };
-    for g in &carried_globals {
-        if g.frequency == Frequency::Vertex && !g.perlight && !refilled(g.name) {
-            crossings.push(Crossing {
-                name: format!("in_{}", sanitize(g.name)),
-                ty: Type::of(g.ty),
-                what: Carried::Global(g),
-            });
-        }
+    let crossing_globals: Vec<&'static crate::sema::globals::Global> = carried_globals
+        .iter()
+        .copied()
+        .filter(|g| g.frequency == Frequency::Vertex && !g.perlight && !refilled(g.name))
+        .collect();
+    // The variable whose varying also carries `name`, when both cross.
+    let carrier = |name: &str| {
+        SAME_ON_ENTRY
+            .iter()
+            .find(|(alias, _)| !surface.stanford && *alias == name)
+            .map(|(_, of)| *of)
+            .filter(|of| crossing_globals.iter().any(|g| g.name == *of))
+    };
+    for &g in crossing_globals.iter().filter(|g| carrier(g.name).is_none()) {
+        crossings.push(Crossing {
+            name: format!("in_{}", sanitize(g.name)),
+            ty: Type::of(g.ty),
+            what: Carried::Global(g),
+            also: crossing_globals.iter().copied().filter(|a| carrier(a.name) == Some(g.name)).collect(),
+        });
     }
     for &l in &surface.params {
         let local = surface.local(l);
@@ -154,11 +175,17 @@ pub(crate) fn entry_points(
                 name: format!("in_{}", sanitize(&local.name)),
                 ty: local.ty,
                 what: Carried::Param(l),
+                also: Vec::new(),
             });
         }
     }
     for t in stages.transfers.iter().filter(|t| t.from == StageKind::Vertex && t.to_fragment) {
-        crossings.push(Crossing { name: t.name.to_string(), ty: t.ty, what: Carried::Transfer(t.local) });
+        crossings.push(Crossing {
+            name: t.name.to_string(),
+            ty: t.ty,
+            what: Carried::Transfer(t.local),
+            also: Vec::new(),
+        });
     }
 
     // Vertex attributes: the mesh properties read (each at its own location), then vertex-rate

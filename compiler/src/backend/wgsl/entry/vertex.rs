@@ -17,7 +17,8 @@ use crate::ir::types::{Base, Type};
 use crate::split::{StageKind, Stages};
 
 use super::{
-    Carried, Crossing, geometry_needed, init_uniform_inputs, lay_out, location, plain, varying_type,
+    Carried, Crossing, SAME_ON_ENTRY, geometry_needed, init_uniform_inputs, lay_out, location, plain,
+    varying_type,
 };
 
 #[allow(clippy::too_many_arguments)]
@@ -121,12 +122,19 @@ pub(super) fn vertex_entry(
     } else {
         let zero = t.float(0.0);
         let origin = t.splat(zero, 3);
-        values.extend([("P", p_cam), ("I", p_cam), ("E", origin), ("dPdtime", origin)]);
+        values.extend([("P", p_cam), ("E", origin), ("dPdtime", origin)]);
         if let Some(n) = n_cam {
             values.extend([("N", n), ("Ng", n)]);
         }
         if let Some((u, v)) = uv {
-            values.extend([("u", u), ("v", v), ("s", u), ("t", v)]);
+            values.extend([("u", u), ("v", v)]);
+        }
+        // The fragment stage fills these from one varying when both cross, so they are set from
+        // the table that decides it.
+        for (alias, of) in SAME_ON_ENTRY {
+            if let Some(&(_, value)) = values.iter().find(|(name, _)| *name == of) {
+                values.push((alias, value));
+            }
         }
         if let Some(d) = dpdu {
             values.push(("dPdu", d));
@@ -223,6 +231,7 @@ pub(super) fn vertex_entry(
             location: k as u32,
             components: c.ty.base.components(),
             flat: matches!(c.ty.base, Base::Bool | Base::Int | Base::Uint),
+            also: c.also.iter().map(|g| g.name.to_string()).collect(),
         });
     }
     let span = lay_out(t.mb, &mut members);

@@ -25,7 +25,8 @@ pub fn source(name: &str) -> Option<&'static str> {
 
 /// The built-in functions whose implementations are written in the language, in
 /// `compiler/stdlib/builtins.sl` (as `__NAME_RESULT` overloaded by parameter types).
-pub const LIBRARY_BUILTINS: &[&str] = &["noise", "snoise", "pnoise", "cellnoise"];
+pub const LIBRARY_BUILTINS: &[&str] =
+    &["noise", "snoise", "pnoise", "cellnoise", "diffuse", "specular", "phong", "specularbrdf"];
 
 /// The file that implements the library built-ins; it is not for `#include`.
 const LIBRARY: &str = include_str!("../stdlib/builtins.sl");

@@ -1,5 +1,6 @@
 // The built-in functions written in the language: RenderMan's `noise`, `snoise`, `pnoise` and
-// `cellnoise` in every overload of docs/builtins.md. The semantic stage inlines `__NAME_RESULT`
+// `cellnoise` in every overload of docs/builtins.md, and the light sums `diffuse`, `specular`,
+// `phong` and the one-light `specularbrdf`. The semantic stage inlines `__NAME_RESULT`
 // (overloaded by parameter types) where a shader calls built-in NAME with result type RESULT, so
 // both backends run this code and nothing else. This file is not for `#include`; its functions
 // see only each other and what it includes, never the calling file's functions.
@@ -12,6 +13,7 @@
 
 #include <noise.sl>
 #include <cellular.sl>
+#include <lighting.sl>
 
 #define PATINA_OFFSET_1 vector(123.4567, -371.2345, 291.7311)
 #define PATINA_OFFSET_2 vector(-217.8913, 159.3417, -433.5129)
@@ -110,3 +112,31 @@ float __cellnoise_float(point p; float w) { return cellnoise4(p, w, 0); }
 PATINA_CELLNOISE_TRIPLE(color)
 PATINA_CELLNOISE_TRIPLE(point)
 PATINA_CELLNOISE_TRIPLE(vector)
+
+// The light sums: the lighting library's definitions (compiler/stdlib/lighting.sl, where their
+// guards are described), so that a shader calling `diffuse(N)` and one calling `rm_diffuse(N)` run
+// the same code on both backends. The sums are at fragment rate whatever their arguments, as the
+// built-ins' rate rule has it (docs/builtins.md): RenderMan lights every shading point, never a
+// vertex to be interpolated.
+color __diffuse_color(normal N)
+{
+    fragment color C = rm_diffuse(N);
+    return C;
+}
+
+color __specular_color(normal N; vector V; float roughness)
+{
+    fragment color C = rm_specular(N, V, roughness);
+    return C;
+}
+
+color __phong_color(normal N; vector V; float size)
+{
+    fragment color C = rm_phong(N, V, size);
+    return C;
+}
+
+color __specularbrdf_color(vector L; normal N; vector V; float roughness)
+{
+    return rm_specularbrdf(L, N, V, roughness);
+}

@@ -37,16 +37,17 @@
 // v / |v|, total: the built-in normalize(v) (v / sqrt(v . v)) when the largest component
 // magnitude m is in [1e-18, 1e18], where v . v neither overflows nor underflows in f32;
 // (v / m) / |v / m| outside that range; 0 for the zero vector.
+// (One exit and selects, no early returns: inlined into a light loop on a SIMD device, a return
+// under a varying condition costs a mask kept through the rest of the function.)
 vector lighting_normalize(vector v)
 {
     float m = max(abs(v[0]), abs(v[1]), abs(v[2]));
-    if (m == 0)
-        return vector(0, 0, 0);
+    vector n = normalize(v);
     if (m < 1e-18 || m > 1e18) {
         vector w = v / m;
-        return w / sqrt(w . w);
+        n = w / sqrt(w . w);
     }
-    return normalize(v);
+    return m == 0 ? vector(0, 0, 0) : n;
 }
 
 // x^e for a cosine x, total: x clamped to [0, 1], e clamped to [0, 1e30]; 1 for e = 0 (0^0 = 1
@@ -55,11 +56,8 @@ float lighting_pow01(float x, e)
 {
     float b = min(max(x, 0), 1);
     float k = min(max(e, 0), 1e30);
-    if (k == 0)
-        return 1;
-    if (b < 1.17549435e-38)
-        return 0;
-    return pow(b, k);
+    float p = pow(b, k);
+    return k == 0 ? 1 : (b < 1.17549435e-38 ? 0 : p);
 }
 
 // RenderMan's specularbrdf(L, N, V, roughness) for one light (RI 3.2 §15.6):

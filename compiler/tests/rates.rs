@@ -400,7 +400,7 @@ fn functions_with_fixed_rates() {
         "    Ci = d * r * Kd;",
         "}",
     ]));
-    assert_eq!(the_call(&s, "diffuse").2.rate, Rate::FRAGMENT);
+    assert_eq!(the_library_call(&s, "diffuse").rate, Rate::FRAGMENT, "{:?}", the_library_call(&s, "diffuse"));
     assert_eq!(the_call(&s, "random").2.rate, Rate::FRAGMENT);
     let s = shader(&lines(&[
         "surface shader float4 screen(primitive group float k)",

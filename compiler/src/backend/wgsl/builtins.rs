@@ -12,18 +12,9 @@ use smol_str::SmolStr;
 
 use super::body::{Translator, Value};
 use crate::diag::{Code, Diagnostic};
-use crate::ir::ExprId;
 use crate::ir::types::{Base, Type};
+use crate::ir::{ExprId, ExprKind, Literal};
 use crate::sema::builtins::Builtin;
-
-/// Which RenderMan light sum.
-#[derive(Copy, Clone, PartialEq, Eq)]
-enum LightTerm {
-    Ambient,
-    Diffuse,
-    Specular,
-    Phong,
-}
 
 impl Translator<'_> {
     /// A call of a built-in.
@@ -74,7 +65,12 @@ impl Translator<'_> {
             "atan" => self.math2(M::Atan2, v(0), v(1)),
             "pow" => {
                 let y = wide(self, 1);
-                self.pow(v(0), y, n)
+                if self.never_negative(args[0], 0) {
+                    // The negative-base case cannot arise: WGSL's pow is the interpreter's here.
+                    self.math2(M::Pow, v(0), y)
+                } else {
+                    self.pow(v(0), y, n)
+                }
             }
             "exp" => self.math1(M::Exp, v(0)),
             "sqrt" => self.math1(M::Sqrt, v(0)),
@@ -253,17 +249,9 @@ impl Translator<'_> {
                 self.fresnel(args, &vals)?;
                 void(self)
             }
-            "ambient" => self.light_sum(LightTerm::Ambient, &vals)?,
-            "diffuse" => self.light_sum(LightTerm::Diffuse, &vals)?,
-            "specular" => self.light_sum(LightTerm::Specular, &vals)?,
-            "phong" => self.light_sum(LightTerm::Phong, &vals)?,
+            "ambient" => self.ambient()?,
             "lightsource" => self.lightsource(args, span)?,
             "surface" => self.surface_message(args, span)?,
-            "specularbrdf" => {
-                let l = self.normalize(v(0));
-                let brdf = self.specular_brdf(l, v(1), v(2), v(3));
-                self.splat(brdf, 3)
-            }
             "transform" | "vtransform" | "ntransform" => self.transform(b.name, args, &vals, ret, span)?,
             "transpose" => self.math1(M::Transpose, v(0)),
             "affine" => {
@@ -329,7 +317,8 @@ impl Translator<'_> {
                     ),
                 ));
             }
-            "noise" | "snoise" | "pnoise" | "cellnoise" => {
+            "noise" | "snoise" | "pnoise" | "cellnoise" | "diffuse" | "specular" | "phong"
+            | "specularbrdf" => {
                 return Err(super::internal(
                     span,
                     format!(
@@ -403,15 +392,6 @@ impl Translator<'_> {
         self.pick(above, one, zero)
     }
 
-    /// `a . b` of three-component vectors, summed as the interpreter does.
-    pub(super) fn dot3(&mut self, a: Value, b: Value) -> Value {
-        if self.fast() {
-            return self.math2(M::Dot, a, b);
-        }
-        let (a, b) = (self.parts(a, 3), self.parts(b, 3));
-        self.dot_parts(&a, &b)
-    }
-
     /// The interpreter's `sign`: 1, -1, 0 for NaN, or `x` itself for zeros (keeping the sign of
     /// zero). NaN is found from the bits: comparisons with NaN are not reliable on every device.
     fn sign(&mut self, x: Value) -> Value {
@@ -458,15 +438,31 @@ impl Translator<'_> {
         self.fb.add(Expression::Select { condition: wide, accept: t, reject: step })
     }
 
-    /// `pow(max(0, N . normalize(L + V)), 1 / roughness)`.
-    fn specular_brdf(&mut self, l: Value, n: Value, v: Value, roughness: Value) -> Value {
-        let h = self.binary(Op::Add, l, v);
-        let h = self.normalize(h);
-        let d = self.dot3(n, h);
-        let (zero, one) = (self.float(0.0), self.float(1.0));
-        let d = self.math2(M::Max, zero, d);
-        let e = self.binary(Op::Divide, one, roughness);
-        self.math2(M::Pow, d, e)
+    /// Whether the value of `id` is never below zero (it may be NaN or -0, which `pow`'s
+    /// negative-base case does not take either): a non-negative literal, `abs`, `sqrt`, `exp`, a
+    /// `max` with such an operand, a `min` or `clamp` of such bounds, or a local written once,
+    /// by its declaration, with such a value (`float b = min(max(x, 0), 1)`).
+    fn never_negative(&self, id: ExprId, depth: u32) -> bool {
+        // Deep enough for the guards written in the library; a longer chain is just not proved.
+        if depth > 8 {
+            return false;
+        }
+        let sure = |e: &ExprId| self.never_negative(*e, depth + 1);
+        match &self.shader.expr(id).kind {
+            ExprKind::Literal(Literal::Float(x)) => *x >= 0.0,
+            ExprKind::Literal(Literal::Int(x)) => *x >= 0,
+            ExprKind::Literal(Literal::Uint(_)) => true,
+            ExprKind::Convert(a) => sure(a),
+            ExprKind::Local(l) => self.only_initialiser(*l).is_some_and(|value| sure(&value)),
+            ExprKind::Builtin(b, args) => match b.name {
+                "abs" | "sqrt" | "exp" => true,
+                "max" => args.iter().any(sure),
+                "min" => args.iter().all(sure),
+                "clamp" => args.len() == 3 && args[1..].iter().all(sure),
+                _ => false,
+            },
+            _ => false,
+        }
     }
 
     /// `pow(x, y)` with the interpreter's (C's `powf`) result for a negative base and an integral
@@ -554,55 +550,19 @@ impl Translator<'_> {
         Ok(self.float(1.0))
     }
 
-    /// The RenderMan light sums, as the RI specification defines them with `illuminance`.
-    fn light_sum(&mut self, term: LightTerm, vals: &[Value]) -> Result<Value, Diagnostic> {
+    /// RenderMan's `ambient()`: the sum of the ambient lights' `Cl`. (The other light sums are
+    /// written in the language, `compiler/stdlib/builtins.sl`.)
+    fn ambient(&mut self) -> Result<Value, Diagnostic> {
         let zero = self.float(0.0);
         let mut sum = self.splat(zero, 3);
         for k in 0..self.lights.len() {
-            if self.lights[k].ambient != (term == LightTerm::Ambient) {
+            if !self.lights[k].ambient {
                 continue;
             }
             let outer = self.light.replace(k);
             let cl = self.global_value("Cl");
-            let l = self.global_value("L");
             self.light = outer;
-            let (cl, l) = (cl?, l?);
-            let weight = match term {
-                LightTerm::Ambient => None,
-                LightTerm::Diffuse => {
-                    let nl = self.normalize(l);
-                    let d = self.dot3(nl, vals[0]);
-                    Some(self.math2(M::Max, zero, d))
-                }
-                LightTerm::Specular => {
-                    let nl = self.normalize(l);
-                    let facing = self.dot3(nl, vals[0]);
-                    let brdf = self.specular_brdf(nl, vals[0], vals[1], vals[2]);
-                    let lit = self.binary(Op::GreaterEqual, facing, zero);
-                    Some(self.fb.add(Expression::Select { condition: lit, accept: brdf, reject: zero }))
-                }
-                LightTerm::Phong => {
-                    let n = self.normalize(vals[0]);
-                    let v = self.normalize(vals[1]);
-                    let minus_v = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: v });
-                    let r = self.reflect(minus_v, n);
-                    let nl = self.normalize(l);
-                    let facing = self.dot3(nl, vals[0]);
-                    let d = self.dot3(r, nl);
-                    let d = self.math2(M::Max, zero, d);
-                    let p = self.math2(M::Pow, d, vals[2]);
-                    let lit = self.binary(Op::GreaterEqual, facing, zero);
-                    Some(self.fb.add(Expression::Select { condition: lit, accept: p, reject: zero }))
-                }
-            };
-            let contribution = match weight {
-                Some(w) => {
-                    let w = self.splat(w, 3);
-                    self.binary(Op::Multiply, cl, w)
-                }
-                None => cl,
-            };
-            sum = self.binary(Op::Add, sum, contribution);
+            sum = self.binary(Op::Add, sum, cl?);
         }
         Ok(sum)
     }

@@ -191,3 +191,15 @@ fn i_crosses_in_the_varying_of_p() {
     let in_p = varyings.iter().find(|v| v.name == "in_P").expect("P crosses");
     assert_eq!(in_p.also, ["I"]);
 }
+
+#[test]
+fn pow_of_a_base_that_cannot_be_negative_is_wgsls_pow() {
+    // A negative base takes the interpreter's rule (the exponent's parity, through `trunc`); a
+    // base clamped to [0, 1], directly or through a variable written once, cannot take it.
+    let wgsl = |body: &str| program(&format!("surface t(float e = 2) {{ {body} }}"), None).wgsl().unwrap();
+    assert!(wgsl("Ci = pow(s - 0.5, e);").contains("trunc("));
+    for guarded in ["Ci = pow(max(s - 0.5, 0), e);", "float b = clamp(s, 0, 1); Ci = pow(b, e);"] {
+        let text = wgsl(guarded);
+        assert!(text.contains("pow(") && !text.contains("trunc("), "{guarded}\n{text}");
+    }
+}

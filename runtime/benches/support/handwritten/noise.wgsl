@@ -41,6 +41,26 @@ fn facing_normal(in: Surface) -> vec3f {
     return faceForward(normalize(in.n), in.p, ng);
 }
 
+// The lighting library's guards (compiler/stdlib/lighting.sl), part of the light sums the
+// built-ins diffuse and specular are: RenderMan's sums made total.
+// v / |v| where |v|^2 neither overflows nor underflows, rescaled first where it would, 0 for 0.
+fn safe_normalize(v: vec3f) -> vec3f {
+    let m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    var n = normalize(v);
+    if (m < 1e-18 || m > 1e18) {
+        let w = v / m;
+        n = w / sqrt(dot(w, w));
+    }
+    return select(n, vec3f(0.0), m == 0.0);
+}
+// x^e for a cosine x: the base clamped to [0, 1], the exponent to [0, 1e30]; 1 for e = 0, 0 for a
+// denormal base.
+fn pow01(x: f32, e: f32) -> f32 {
+    let b = clamp(x, 0.0, 1.0);
+    let k = clamp(e, 0.0, 1e30);
+    return select(select(pow(b, k), 0.0, b < 1.17549435e-38), 1.0, k == 0.0);
+}
+
 // The Patina plane's (s, t) at a point of the screen: the plane reaches past the view, which
 // shows the middle PLANE_SPAN of it.
 fn plane_st(uv: vec2f) -> vec2f {

@@ -119,6 +119,7 @@ fn wood(in: Surface) -> @location(0) vec4f {
     // The plane's object space is 2 wide, y up.
     let p = WOOD_SCALE * vec3f(2.0 * st.x - 1.0, 1.0 - 2.0 * st.y, 0.0);
     let colour = hart_wood(p, dpdx(p), dpdy(p));
-    // Matte, under an ambient light and a distant one.
-    return vec4f(colour * (0.35 + 0.75 * max(0.0, dot(WOOD_LIGHT, facing_normal(in)))), 1.0);
+    // Matte, under an ambient light and a distant one (diffuse's sum, with its guard).
+    let lit = max(0.0, dot(safe_normalize(WOOD_LIGHT), facing_normal(in)));
+    return vec4f(colour * (0.35 + 0.75 * lit), 1.0);
 }

@@ -200,17 +200,9 @@ impl Lower<'_> {
             }
             "reflect" => Val::Float(self.reflect(f(0), f(1))),
             "refract" => Val::Float(self.refract(f(0), f(1), f(2)[0])),
-            "ambient" => self.light_sum(LightTerm::Ambient, &vals),
-            "diffuse" => self.light_sum(LightTerm::Diffuse, &vals),
-            "specular" => self.light_sum(LightTerm::Specular, &vals),
-            "phong" => self.light_sum(LightTerm::Phong, &vals),
+            "ambient" => self.ambient(),
             "lightsource" => self.lightsource(&vals[0], args[1], span)?,
             "surface" => self.surface_message(&vals[0], &vals[1], args[1], span)?,
-            "specularbrdf" => {
-                let l = self.normalize(f(0));
-                let brdf = self.specular_brdf(&l, f(1), f(2), f(3)[0]);
-                Val::Float(vec![brdf; 3])
-            }
             "concat" => Val::Str(
                 vals.iter()
                     .map(|v| match v {
@@ -230,7 +222,8 @@ impl Lower<'_> {
                 )
                 .with_note("opt::derivs::differentiate must run before the interpreter's lowering"));
             }
-            "noise" | "snoise" | "pnoise" | "cellnoise" => {
+            "noise" | "snoise" | "pnoise" | "cellnoise" | "diffuse" | "specular" | "phong"
+            | "specularbrdf" => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
                     format!("`{}` reached the interpreter as a built-in", b.name),
@@ -469,18 +462,6 @@ impl Lower<'_> {
         Val::Float(vec![self.emit.select(true, wide, t, step)])
     }
 
-    /// RenderMan's `specularbrdf(L, N, V, roughness)`: `pow(max(0, N . normalize(L + V)), 1 / roughness)`.
-    fn specular_brdf(&mut self, l: &[Reg], n: &[Reg], v: &[Reg], roughness: Reg) -> Reg {
-        let h = self.zip(Binary::Add, l, v);
-        let h = self.normalize(&h);
-        let d = self.dot(n, &h);
-        let zero = self.emit.float(0.0);
-        let one = self.emit.float(1.0);
-        let d = self.emit.binary(Binary::Max, zero, d);
-        let e = self.emit.binary(Binary::Div, one, roughness);
-        self.emit.binary(Binary::Pow, d, e)
-    }
-
     /// The number of the texture a name or `texref` argument denotes (a string's value, or the
     /// value the binding gives a texref parameter, or the parameter's name).
     fn texture_index(&mut self, id: ExprId) -> Result<u32, Diagnostic> {
@@ -501,63 +482,19 @@ impl Lower<'_> {
         Ok(index as u32)
     }
 
-    /// The RenderMan light sums, as the RI specification defines them with `illuminance`.
-    fn light_sum(&mut self, term: LightTerm, vals: &[Val]) -> Val {
+    /// RenderMan's `ambient()`: the sum of the ambient lights' `Cl`. (The other light sums are
+    /// written in the language, `compiler/stdlib/builtins.sl`.)
+    fn ambient(&mut self) -> Val {
         let mut sum = vec![self.emit.float(0.0); 3];
-        let zero = self.emit.float(0.0);
         for k in 0..self.binding.lights.len() {
-            let ambient = self.binding.lights[k].ambient;
-            if ambient != (term == LightTerm::Ambient) {
+            if !self.binding.lights[k].ambient {
                 continue;
             }
             self.light = Some(k);
             let cl = self.global_named("Cl").floats().to_vec();
-            let l = self.global_named("L").floats().to_vec();
             self.light = None;
-            let weight = match term {
-                LightTerm::Ambient => None,
-                LightTerm::Diffuse => {
-                    let nl = self.normalize(&l);
-                    let d = self.dot(&nl, vals[0].floats());
-                    Some(self.emit.binary(Binary::Max, zero, d))
-                }
-                LightTerm::Specular => {
-                    let nl = self.normalize(&l);
-                    let n = vals[0].floats();
-                    let facing = self.dot(&nl, n);
-                    let brdf = self.specular_brdf(&nl, n, vals[1].floats(), vals[2].floats()[0]);
-                    let lit = self.emit.compare(Compare::Ge, facing, zero);
-                    Some(self.emit.select(true, lit, brdf, zero))
-                }
-                LightTerm::Phong => {
-                    let n = self.normalize(vals[0].floats());
-                    let v = self.normalize(vals[1].floats());
-                    let minus_v = self.each(Unary::Neg, &v);
-                    let r = self.reflect(minus_v.floats(), &n);
-                    let nl = self.normalize(&l);
-                    let facing = self.dot(&nl, vals[0].floats());
-                    let d = self.dot(&r, &nl);
-                    let d = self.emit.binary(Binary::Max, zero, d);
-                    let p = self.emit.binary(Binary::Pow, d, vals[2].floats()[0]);
-                    let lit = self.emit.compare(Compare::Ge, facing, zero);
-                    Some(self.emit.select(true, lit, p, zero))
-                }
-            };
-            let contribution = match weight {
-                Some(w) => self.zip(Binary::Mul, &cl, &[w]),
-                None => cl,
-            };
-            sum = self.zip(Binary::Add, &sum, &contribution);
+            sum = self.zip(Binary::Add, &sum, &cl);
         }
         Val::Float(sum)
     }
-}
-
-/// Which RenderMan light sum.
-#[derive(Copy, Clone, PartialEq, Eq)]
-enum LightTerm {
-    Ambient,
-    Diffuse,
-    Specular,
-    Phong,
 }

@@ -418,6 +418,11 @@ impl<'a> Translator<'a> {
         }
     }
 
+    /// The value of local `l` when its declaration is its only store.
+    pub(crate) fn only_initialiser(&self, l: LocalId) -> Option<ExprId> {
+        self.stores.get(l.0 as usize)?.only_initialiser(self.shader.local(l).span)
+    }
+
     /// A pointer to the place a store writes (indices clamped into range).
     pub(crate) fn place(&mut self, place: &Place) -> Result<Value, Diagnostic> {
         match place {

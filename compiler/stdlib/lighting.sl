@@ -1,10 +1,9 @@
 // Lighting functions: RenderMan's illuminance-based light sums written in the language
-// (rm_diffuse, rm_specular, rm_phong, rm_specularbrdf: the definitions the built-ins diffuse,
-// specular, phong and specularbrdf use, docs/builtins.md), Kajiya & Kay's hair lighting model and
+// (rm_diffuse, rm_specular, rm_phong, rm_specularbrdf: the built-ins diffuse, specular, phong and
+// specularbrdf are these, through compiler/stdlib/builtins.sl; docs/builtins.md), Kajiya & Kay's hair lighting model and
 // the Banks / Heidrich-Seidel anisotropic model. See docs/stdlib/lighting.md.
 //
-// Sources: RenderMan Interface Specification 3.2 §15.6 (the light sums, as this project's
-// backends define them: compiler/src/backend/cpu/lower/builtins.rs, light_sum and specular_brdf);
+// Sources: RenderMan Interface Specification 3.2 §15.6 (the light sums);
 // Kajiya & Kay, "Rendering Fur with Three Dimensional Textures", SIGGRAPH 1989
 // (shared/seeds/003_40eb5f8fea62bec3.txt L257-325, equations 10-16); W. R. Mark's chapter of
 // Texturing & Modeling, 3rd ed. (shared/seeds/002_a44091d2843c02ac.txt L3259-3401: the two

@@ -1,7 +1,7 @@
 // Lighting functions: RenderMan's illuminance-based light sums written in the language
 // (rm_diffuse, rm_specular, rm_phong, rm_specularbrdf: the built-ins diffuse, specular, phong and
-// specularbrdf are these, through compiler/stdlib/builtins.sl; docs/builtins.md), Kajiya & Kay's hair lighting model and
-// the Banks / Heidrich-Seidel anisotropic model. See docs/stdlib/lighting.md.
+// specularbrdf are these, through compiler/stdlib/builtins.sl; docs/builtins.md), Kajiya & Kay's
+// hair lighting model and the Banks / Heidrich-Seidel anisotropic model. See docs/stdlib/lighting.md.
 //
 // Sources: RenderMan Interface Specification 3.2 §15.6 (the light sums);
 // Kajiya & Kay, "Rendering Fur with Three Dimensional Textures", SIGGRAPH 1989

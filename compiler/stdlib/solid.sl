@@ -260,27 +260,36 @@ float hart_term_footprint(matrix T; float fw; vector dpdx, dpdy)
     return _patina_hart_footprint(_patina_hart_blur(T, fw), x . x, y . y);
 }
 
-// The noise term of frequency k over a footprint: the mean of snoise3 at `probes` points spread
-// evenly along the footprint's major axis `major` (in T space, frequency 1) about k ts + phase,
-// each faded by hart_term_weight(k, width), width being the footprint one probe still covers.
-// A probe per half a feature of the term along the major axis, at most HART_MAX_PROBES: a
-// receding surface's footprint is long and thin, and one faded sample of it loses the features
-// the thin side still resolves (Feline's probes along the major axis, McCormack et al. 1999).
-// `probes` is taken as clamp(floor(probes), 1, HART_MAX_PROBES), so any input ends the loop;
-// k and `major` are clamped to +-1e9, so the probes' offsets stay finite (a term that is not
-// faded out has k |major| below 20, far inside).
+// The noise term of frequency k over a footprint: the box average of snoise3 along the
+// footprint's major axis `major` (in T space, frequency 1) about k ts + phase, by a midpoint rule
+// of `probes` points, each faded by hart_term_weight(k, width), width being the footprint one probe
+// still covers. A probe per half a feature of the term along the major axis, at most
+// HART_MAX_PROBES: a receding surface's footprint is long and thin, and one faded sample of it
+// loses the features the thin side still resolves (Feline's probes along the major axis,
+// McCormack et al. 1999). `probes` = n may be fractional, so that the average is continuous in
+// the footprint: the axis [-1/2, 1/2] is cut into ceil(n) pieces of length 1/n from its start, the
+// last one shorter, and each probe, at its piece's middle, weighs its piece's length (a probe
+// enters with weight 0 as n passes a whole number; a whole count of probes was a step, where the
+// picture jumped by ~1e-2 as a zoom changed the footprint, and f32 and f64 could land on its two
+// sides). n is clamped to [1, HART_MAX_PROBES], so any input ends the loop; k and `major` are
+// clamped to +-1e9, so the probes' offsets stay finite (a term that is not faded out has
+// k |major| below 20, far inside).
 float hart_term_probes(point kts; vector major; float k, probes, width)
 {
     float w = hart_term_weight(k, width);
-    float n = clamp(floor(probes), 1, HART_MAX_PROBES);
+    float n = clamp(probes, 1, HART_MAX_PROBES);
     vector m = clamp(k, -1e9, 1e9) * hart_clamp_vector(major);
     float sum = 0;
     if (w > 0) {
+        float count = ceil(n);
         float j;
-        for (j = 0; j < n; j += 1)
-            sum += snoise3(kts + ((j + 0.5) / n - 0.5) * m);
+        for (j = 0; j < count; j += 1) {
+            float a = j / n - 0.5;
+            float b = min((j + 1) / n - 0.5, 0.5);
+            sum += (b - a) * snoise3(kts + (0.5 * (a + b)) * m);
+        }
     }
-    return w * sum / n;
+    return w * sum;
 }
 
 // APST's classification f(s) = q(s) + sum_{i < nterms} a_i n(T_i(s)) (1), filtered:
@@ -298,10 +307,12 @@ float hart_solid(point p; matrix Q; float nterms, amp, gain; matrix T; float lac
 
 // hart_solid over a footprint: an isotropic blur fw and the parallelogram spanned by dpdx and
 // dpdy (p's change across one pixel along each raster axis), carried into T space (dpdx L and
-// dpdy L, the longer the major axis M). Term i of frequency k = lacunarity^i is the mean of
-// N_i = clamp(ceil(2 k |M|), 1, HART_MAX_PROBES) probes along M (hart_term_probes), each faded
-// by the footprint it covers, sqrt((stretch(T) fw)^2 + (|minor|^2 + (|M| / N_i)^2) / 2)
-// (hart_term_footprint with the major axis cut into N_i pieces). With dpdx = dpdy = 0 it is
+// dpdy L, the longer the major axis M). Term i of frequency k = lacunarity^i is the average along
+// M by n_i = clamp(2 k |M| + 1/2, 1, HART_MAX_PROBES) probes, a fractional count (hart_term_probes:
+// the half makes as many probes on average as the whole count ceil(2 k |M|) did),
+// each faded by the footprint it covers, sqrt((stretch(T) fw)^2 + (|minor|^2 + (|M| / n_i)^2) / 2)
+// (hart_term_footprint with the major axis cut into pieces of length |M| / n_i). Continuous in the
+// footprint while the major axis stays the same raster axis. With dpdx = dpdy = 0 it is
 // hart_solid.
 float hart_solid_footprint(point p; matrix Q; float nterms, amp, gain; matrix T; float lacunarity;
                            vector phase; float fw; vector dpdx, dpdy)
@@ -320,7 +331,7 @@ float hart_solid_footprint(point p; matrix Q; float nterms, amp, gain; matrix T;
     float a = clamp(amp, -1e6, 1e6), g = clamp(gain, -8, 8), k = 1;
     float i;
     for (i = 0; i < nt; i += 1) {
-        float probes = clamp(ceil(2 * k * lmajor), 1, HART_MAX_PROBES);
+        float probes = clamp(2 * k * lmajor + 0.5, 1, HART_MAX_PROBES);
         float piece = lmajor / probes;
         float width = _patina_hart_footprint(iso, minor2, piece * piece);
         float n = hart_term_probes(k * ts + ph, major, k, probes, width);

@@ -226,10 +226,11 @@ mod hart {
         [0, 1, 2].map(|k| (0..3).map(|j| d[j] * entry(t, j, k, 1e9)).sum())
     }
 
-    /// f over a footprint (prm.fw isotropic, dx and dy the parallelogram): term i is the mean of
-    /// N_i = clamp(ceil(2 k |M|), 1, 8) noise probes at k T_0(s) + phase + k ((j + 1/2) / N_i - 1/2) M,
-    /// M the longer of dx L and dy L, faded by the footprint one probe covers,
-    /// sqrt((sigma fw)^2 + (|minor|^2 + (|M| / N_i)^2) / 2).
+    /// f over a footprint (prm.fw isotropic, dx and dy the parallelogram): term i is the midpoint
+    /// rule for the mean of the noise over k T_0(s) + phase + k t M, t in [-1/2, 1/2], with
+    /// n_i = clamp(2 k |M| + 1/2, 1, 8) (fractional) pieces of length 1/n_i from t = -1/2, the last one
+    /// cut at 1/2, each probe weighted by its piece's length; M the longer of dx L and dy L,
+    /// faded by the footprint one piece covers, sqrt((sigma fw)^2 + (|minor|^2 + (|M| / n_i)^2) / 2).
     pub fn solid_footprint(p: [f64; 3], prm: &Params, dx: [f64; 3], dy: [f64; 3]) -> f64 {
         let len2 = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>();
         let (x, y) = (linear(dx, &prm.t), linear(dy, &prm.t));
@@ -238,19 +239,22 @@ mod hart {
         let iso = stretch(&prm.t) * prm.fw.abs();
         let mut f = quadric(p, &prm.q);
         for (arg, a, k, _) in terms(|x| x, p, prm) {
-            let probes = (2.0 * k * lmajor).ceil().clamp(1.0, 8.0);
-            let piece = lmajor / probes;
+            let n = (2.0 * k * lmajor + 0.5).clamp(1.0, 8.0);
+            let piece = lmajor / n;
             let w = term_weight(k, (iso * iso + 0.5 * (minor2 + piece * piece)).sqrt());
             let mut sum = 0.0;
-            for j in 0..probes as usize {
-                let t = k * ((j as f64 + 0.5) / probes - 0.5);
-                sum += super::reference::noise(
+            for j in 0..n.ceil() as usize {
+                let start = j as f64 / n - 0.5;
+                let end = ((j + 1) as f64 / n - 0.5).min(0.5);
+                let t = k * 0.5 * (start + end);
+                let noise = super::reference::noise(
                     arg[0] + t * major[0],
                     arg[1] + t * major[1],
                     arg[2] + t * major[2],
                 );
+                sum += (end - start) * noise;
             }
-            f += a * (0.5 + w * 0.5 * SNOISE_SCALE * sum / probes);
+            f += a * (0.5 + w * 0.5 * SNOISE_SCALE * sum);
         }
         f
     }
@@ -863,6 +867,56 @@ fn filtering_drops_terms_and_tends_to_the_mean() {
         assert!(variance[i] <= variance[i - 1] * 1.05 + 1e-15, "variance grows at width {}", widths[i]);
     }
     assert!(variance[widths.len() - 1] < 1e-20 && variance[0] > 1e-3);
+}
+
+/// A slow zoom changes the footprint continuously, and so must the filtered texture: the noise
+/// terms' probe counts are fractional (hart_term_probes), where a whole count was a step that
+/// made f jump by ~1e-2 as the count changed (flicker). Marble's four terms at eight points, the
+/// footprint (a receding plane's, 6 times longer than wide) scaled by 1.0015 per frame from 0.01
+/// to 3 texture units: f's largest change between two frames stays within what its slope allows,
+/// on the interpreter in f32 and f64 and on the GPU.
+#[test]
+fn filtered_value_is_continuous_in_a_zoom() {
+    let program = support::program(
+        "#include <solid.sl>\n\
+         surface t(varying vector dx = 0, dy = 0; output varying float f = 0) {\n\
+             f = hart_solid_footprint(P, (0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0.5,  0, 0, 0.5, 0), 4, 0.5, 0.5,\n\
+                                      (2, 0, 0, 0,  0, 2, 0, 0,  0, 0, 2, 0,  0, 0, 0, 1), 2, vector(0), 0, dx, dy);\n\
+             Ci = 0; Oi = 1;\n\
+         }",
+    );
+    let frames = (3.0f64 / 0.01).ln() / 1.0015f64.ln();
+    let frames = frames.ceil() as usize;
+    let points = 8;
+    let mut rng = support::Rng(0x2005);
+    let mut cols: Vec<Vec<f64>> = vec![Vec::new(); 3];
+    for _ in 0..points {
+        let p = [rng.range(-3.0, 3.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)];
+        for i in 0..frames {
+            let z = 0.01 * 1.0015f64.powi(i as i32);
+            cols[0].extend(p);
+            cols[1].extend([z * 0.6, z * 0.3, z * 0.1]);
+            cols[2].extend([-z * 0.05, z * 0.08, z * 0.02]);
+        }
+    }
+    let n = points * frames;
+    let inputs: Vec<(&str, &[f64])> =
+        ["P", "dx", "dy"].into_iter().zip(cols.iter().map(|c| &c[..])).collect();
+    let mut runs = vec![
+        ("f64", program.cpu::<f64>(n, &inputs, &["f"]).remove(0)),
+        ("f32", program.cpu::<f32>(n, &inputs, &["f"]).remove(0)),
+    ];
+    if let Some(gpu) = patina_runtime::gpu::for_tests() {
+        runs.push(("gpu", program.gpu(&gpu, n, &inputs, &["f"]).remove(0)));
+    }
+    for (what, f) in runs {
+        let jump = (0..points)
+            .flat_map(|k| (1..frames).map(move |i| k * frames + i))
+            .map(|i| (f[i] - f[i - 1]).abs())
+            .fold(0.0, f64::max);
+        println!("{what}: largest change of f between two frames {jump:.2e}");
+        assert!(jump < 1e-3, "{what}: f jumps by {jump:e} between two frames of the zoom");
+    }
 }
 
 #[test]

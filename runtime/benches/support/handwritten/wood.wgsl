@@ -96,17 +96,21 @@ fn hart_wood(p: vec3f, dpx: vec3f, dpy: vec3f) -> vec3f {
     let yy = dot(y, y);
     let major = select(y, x, xx >= yy);
     let lmajor = sqrt(max(xx, yy));
-    // A probe per half a noise feature along the major axis, each faded by the footprint it covers.
-    let probes = clamp(ceil(2.0 * lmajor), 1.0, WOOD_MAX_PROBES);
-    let piece = lmajor / probes;
+    // A probe per half a noise feature along the major axis, each faded by the footprint it
+    // covers: the axis cut into pieces of length 1 / n from its start (n fractional, the last
+    // piece shorter), a probe at each piece's middle weighing its length.
+    let n = clamp(2.0 * lmajor + 0.5, 1.0, WOOD_MAX_PROBES);
+    let piece = lmajor / n;
     let weight = 1.0 - smoothstep(0.4, 1.6, sqrt(0.5 * (min(xx, yy) + piece * piece)));
     var sum = 0.0;
     if (weight > 0.0) {
-        for (var j = 0.0; j < probes; j += 1.0) {
-            sum += snoise(ts + ((j + 0.5) / probes - 0.5) * major);
+        for (var j = 0.0; j < ceil(n); j += 1.0) {
+            let a = j / n - 0.5;
+            let b = min((j + 1.0) / n - 0.5, 0.5);
+            sum += (b - a) * snoise(ts + (0.5 * (a + b)) * major);
         }
     }
-    let f = dot(p.xy, p.xy) + 0.5 + 0.5 * weight * sum / probes;
+    let f = dot(p.xy, p.xy) + 0.5 + 0.5 * weight * sum;
     // f's gradient, its noise term faded by the whole footprint, gives f's spread over the pixel.
     let gradient_weight = 1.0 - smoothstep(0.4, 1.6, sqrt(0.5 * (xx + yy)));
     let gradient = vec3f(2.0 * p.xy, 0.0) + (gradient_weight * 0.5 * SNOISE_SCALE) * WOOD_T * improved_noise_gradient(ts);

@@ -284,6 +284,31 @@ fn pipelines_are_kept_per_device_and_reused_with_fresh_uniforms() {
     assert!(c.passes(&t), "{c:?}");
 }
 
+/// Issue 23: objects whose shaders compiled to the same module share one pipeline within a render
+/// (each object made its own before, and only the next render reused one), and both still draw.
+#[test]
+fn objects_sharing_a_module_share_one_pipeline_in_a_render() {
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let s = written_scene(
+        "shared",
+        "surface shared(color tint = 1) { Ci = tint; Oi = 1; }\n",
+        "[output]\nwidth = 32\nheight = 16\nbackground = [0, 0, 0, 1]\n\
+         [camera]\nfrom = [0, 0, -6]\nto = [0, 0, 0]\n\
+         [[object]]\nmesh = \"sphere\"\nshader = \"shared.sl\"\n\
+         transform = [{ translate = [-1.5, 0, 0] }]\n\
+         [[object]]\nmesh = \"sphere\"\nshader = \"shared.sl\"\n\
+         transform = [{ translate = [1.5, 0, 0] }]\n",
+    );
+    let prepared = render::prepare(&s).unwrap();
+    let image = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap();
+    assert_eq!((gpu.pipelines_made(), gpu.kept_pipelines()), (1, 1), "two objects, one module, one pipeline");
+    // Both spheres are drawn: white left and right of the centre, the background between.
+    let at = |x: u32| image.pixels[(8 * image.width + x) as usize];
+    assert_eq!((at(8), at(16), at(24)), ([1.0; 4], [0.0, 0.0, 0.0, 1.0], [1.0; 4]));
+    render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap();
+    assert_eq!(gpu.pipelines_made(), 1, "the next render reuses it");
+}
+
 /// Two lights and a surface that reads them through message passing (`lightsource`, light
 /// categories, a light's output parameter), bound together by the renderer.
 const MESSAGES: &str = r#"

@@ -192,3 +192,30 @@ fn hart_solid_point_reads_its_named_space_on_the_gpu() {
     let err: f64 = c[5].parse().unwrap_or_else(|_| panic!("err gpu-f32 is a number: {stdout}"));
     assert!(err <= 1e-6, "{stdout}");
 }
+
+#[test]
+fn a_shader_that_reads_a_texture_runs_in_the_gpu_kernel() {
+    // Issue 23: paintedplastic's texture lookup reached the WGSL backend unexpanded (E0799), and
+    // the interpreter read no texture (every channel 0). Both now read the texture the renderer
+    // would load: here a generated checker of 2x2 squares, black and white, whose alpha is 1, so
+    // that the division below is finite only where the texture is read.
+    let file = shader_file(
+        "texture",
+        "// sweep: x in [0, 1]; y in [0, 1]\nfloat checker(float x, y)\n\
+         { return float texture(\"checker:2\", x, y) / float texture(\"checker:2\"[3], x, y); }\n",
+    );
+    let out = patina(&[&file, "--random", "16"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    if !stderr.contains("sweeping the interpreter only") {
+        assert!(stderr.contains("0 GPU errors"), "{stderr}");
+        let c = columns_after(&stdout, "checker(float, float)");
+        assert_eq!(c[1..4], ["0", "0", "0"], "{stdout}");
+        let err: f64 = c[5].parse().unwrap_or_else(|_| panic!("err gpu-f32 is a number: {stdout}"));
+        assert!(err <= 1e-6, "{stdout}");
+    }
+    let out = patina(&["--stdlib", "--module", "shaders", "--function", "paintedplastic", "--random", "4"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stderr.contains("0 GPU errors") || stderr.contains("sweeping the interpreter only"), "{stderr}");
+}

@@ -164,3 +164,58 @@ fn the_guards_the_sweep_found_missing_hold() {
     assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
     assert!(stderr.contains("7 subjects") && stderr.contains("0 unstable, 0 not swept"), "{stderr}");
 }
+
+/// The row of `subject` in the printed table, split into columns after the subject's label.
+fn columns_after<'a>(stdout: &'a str, subject: &str) -> Vec<&'a str> {
+    let row = stdout.lines().find(|l| l.contains(subject)).unwrap_or_else(|| panic!("no row {subject}"));
+    row[row.find(subject).unwrap() + subject.len()..].split_whitespace().collect()
+}
+
+#[test]
+fn hart_solid_point_reads_its_named_space_on_the_gpu() {
+    // Issue 23: the kernel of hart_solid_point (an array parameter, and P in "object" space) was
+    // refused by the device, "Binding is missing from the pipeline layout": the uniform block of
+    // the named space's matrices was not bound (fixed by b308509, which binds it at 0). Its scale
+    // is documented as at most 1e4, so its own f32 overflow at 1e30 is out of the sweep.
+    let file = format!("{}/examples/shaders/hart_solid.sl", env!("CARGO_MANIFEST_DIR"));
+    let out = patina(&[&file, "--function", "hart_solid_point", "--random", "8"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stderr.contains("1 subjects") && stderr.contains("0 unstable"), "{stderr}");
+    if stderr.contains("sweeping the interpreter only") {
+        return;
+    }
+    assert!(stderr.contains("0 GPU errors"), "{stderr}");
+    // points, non-finite f64, f32, gpu, err f32-f64, err gpu-f32, err fast-f64.
+    let c = columns_after(&stdout, "hart_solid_point(float, float[])");
+    assert_eq!(c[1..4], ["0", "0", "0"], "{stdout}");
+    let err: f64 = c[5].parse().unwrap_or_else(|_| panic!("err gpu-f32 is a number: {stdout}"));
+    assert!(err <= 1e-6, "{stdout}");
+}
+
+#[test]
+fn a_shader_that_reads_a_texture_runs_in_the_gpu_kernel() {
+    // Issue 23: paintedplastic's texture lookup reached the WGSL backend unexpanded (E0799), and
+    // the interpreter read no texture (every channel 0). Both now read the texture the renderer
+    // would load: here a generated checker of 2x2 squares, black and white, whose alpha is 1, so
+    // that the division below is finite only where the texture is read.
+    let file = shader_file(
+        "texture",
+        "// sweep: x in [0, 1]; y in [0, 1]\nfloat checker(float x, y)\n\
+         { return float texture(\"checker:2\", x, y) / float texture(\"checker:2\"[3], x, y); }\n",
+    );
+    let out = patina(&[&file, "--random", "16"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    if !stderr.contains("sweeping the interpreter only") {
+        assert!(stderr.contains("0 GPU errors"), "{stderr}");
+        let c = columns_after(&stdout, "checker(float, float)");
+        assert_eq!(c[1..4], ["0", "0", "0"], "{stdout}");
+        let err: f64 = c[5].parse().unwrap_or_else(|_| panic!("err gpu-f32 is a number: {stdout}"));
+        assert!(err <= 1e-6, "{stdout}");
+    }
+    let out = patina(&["--stdlib", "--module", "shaders", "--function", "paintedplastic", "--random", "4"]);
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stderr.contains("0 GPU errors") || stderr.contains("sweeping the interpreter only"), "{stderr}");
+}

@@ -15,7 +15,9 @@
 // `constant` loop counters would then be assigned under a uniform condition, E0605.)
 #include <solid.sl>
 
-// The solid coordinates of the shading point.
+// The solid coordinates of the shading point (scales are modest: 1e30 times a coordinate of 1e30
+// overflows f32).
+// sweep: scale in [-1e4, 1e4]
 point hart_solid_point(float scale; float origin[3])
 {
     return scale * (transform("object", P) - point (origin[0], origin[1], origin[2]));

@@ -284,6 +284,58 @@ fn pipelines_are_kept_per_device_and_reused_with_fresh_uniforms() {
     assert!(c.passes(&t), "{c:?}");
 }
 
+/// Issue 23: `constant` variables declared, then stored again (in a loop too), inside a varying
+/// branch (no longer E0605) draw the same on both backends: 7 on the right half, 0 on the left.
+#[test]
+fn constants_living_inside_a_varying_branch_render_alike() {
+    let shader = "surface branch() {\n\
+                    float v = 0;\n\
+                    if (s > 0.5) {\n\
+                      constant float k = 2;\n\
+                      k = k * 3;\n\
+                      constant float j = 0;\n\
+                      for (j = 0; j < 2; j += 1) k += j;\n\
+                      v = k / 7;\n\
+                    }\n\
+                    Ci = v;\n\
+                    Oi = 1;\n\
+                  }\n";
+    let text = "[output]\nwidth = 32\nheight = 32\n\
+                [camera]\nfrom = [0.0, 0.0, -2.0]\nto = [0.0, 0.0, 0.0]\nfov = 53.13\n\
+                [[object]]\nmesh = \"plane\"\nshader = \"branch.sl\"\n";
+    let s = written_scene("branch", shader, text);
+    let gpu = patina_runtime::gpu::for_tests();
+    let cpu = cpu_checked_against_gpu("branch", &s, gpu.as_ref(), Thresholds::default());
+    let red = |x: u32, y: u32| cpu.pixels[(y * cpu.width + x) as usize][0];
+    assert!((0..32).all(|y| (0..14).all(|x| red(x, y) == 0.0)));
+    assert!((0..32).all(|y| (18..32).all(|x| red(x, y) == 1.0)));
+}
+
+/// Issue 23: objects whose shaders compiled to the same module share one pipeline within a render
+/// (each object made its own before, and only the next render reused one), and both still draw.
+#[test]
+fn objects_sharing_a_module_share_one_pipeline_in_a_render() {
+    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    let s = written_scene(
+        "shared",
+        "surface shared(color tint = 1) { Ci = tint; Oi = 1; }\n",
+        "[output]\nwidth = 32\nheight = 16\nbackground = [0, 0, 0, 1]\n\
+         [camera]\nfrom = [0, 0, -6]\nto = [0, 0, 0]\n\
+         [[object]]\nmesh = \"sphere\"\nshader = \"shared.sl\"\n\
+         transform = [{ translate = [-1.5, 0, 0] }]\n\
+         [[object]]\nmesh = \"sphere\"\nshader = \"shared.sl\"\n\
+         transform = [{ translate = [1.5, 0, 0] }]\n",
+    );
+    let prepared = render::prepare(&s).unwrap();
+    let image = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap();
+    assert_eq!((gpu.pipelines_made(), gpu.kept_pipelines()), (1, 1), "two objects, one module, one pipeline");
+    // Both spheres are drawn: white left and right of the centre, the background between.
+    let at = |x: u32| image.pixels[(8 * image.width + x) as usize];
+    assert_eq!((at(8), at(16), at(24)), ([1.0; 4], [0.0, 0.0, 0.0, 1.0], [1.0; 4]));
+    render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap();
+    assert_eq!(gpu.pipelines_made(), 1, "the next render reuses it");
+}
+
 /// Two lights and a surface that reads them through message passing (`lightsource`, light
 /// categories, a light's output parameter), bound together by the renderer.
 const MESSAGES: &str = r#"

@@ -19,9 +19,14 @@ impl Stores {
     /// covers the declared name `declared`).
     pub fn only_initialiser(&self, declared: Span) -> Option<ExprId> {
         let (value, span) = self.whole.filter(|_| self.count == 1)?;
-        (span.file == declared.file && span.start <= declared.start && declared.end <= span.end)
-            .then_some(value)
+        is_declaration(span, declared).then_some(value)
     }
+}
+
+/// Whether a store at `store` is the initialiser of the variable declared at `declared` (the
+/// declarator's span covers the declared name; no other store's does).
+pub fn is_declaration(store: Span, declared: Span) -> bool {
+    store.file == declared.file && store.start <= declared.start && declared.end <= store.end
 }
 
 /// The stores into each local of `shader`, by local index.

@@ -52,6 +52,12 @@ struct Analysis<'s> {
     /// function is checked against these only: it exists only while the body runs, so a
     /// condition around the call cannot make it differ between the points that see it.
     inlined: Vec<(smol_str::SmolStr, Rate, Option<Span>)>,
+    /// The constructs around the statement being walked, outermost first: what each one's own
+    /// conditions add to the control rate (with the condition that raised it most).
+    frames: Vec<(Rate, Option<Span>)>,
+    /// For each local, how many constructs were around its declaration, once the walk has met
+    /// the store that initialises it there (`None`: not met, or declared without a value).
+    declared_at: Vec<Option<usize>>,
 }
 
 #[derive(Copy, Clone)]
@@ -84,6 +90,8 @@ pub fn infer(shader: &mut Shader, diags: &mut Diagnostics) {
     let mut a = Analysis {
         initialised_only,
         inlined: Vec::new(),
+        frames: Vec::new(),
+        declared_at: vec![None; shader.locals.len()],
         origins: vec![constant; shader.exprs.len()],
         local_origins,
         shader,
@@ -208,9 +216,12 @@ impl Analysis<'_> {
                 Stmt::If { cond, then, otherwise } => {
                     let (inner, origin) = self.under(control, control_origin, *cond);
                     let saved = self.inlined.clone();
-                    self.enter(self.rate(*cond), self.shader.exprs[cond.0 as usize].span);
+                    let cond_span = self.shader.exprs[cond.0 as usize].span;
+                    self.enter(self.rate(*cond), cond_span);
+                    self.push_frame(&[(self.rate(*cond), cond_span)]);
                     self.block(then, inner, origin, in_light_loop);
                     self.block(otherwise, inner, origin, in_light_loop);
+                    self.frames.pop();
                     self.inlined = saved;
                 }
                 Stmt::Loop { cond, body, step, .. } => {
@@ -219,8 +230,11 @@ impl Analysis<'_> {
                         None => (control, control_origin),
                     };
                     let saved = self.inlined.clone();
+                    let mut own = Vec::new();
                     if let Some(c) = cond {
-                        self.enter(self.rate(*c), self.shader.exprs[c.0 as usize].span);
+                        let span = self.shader.exprs[c.0 as usize].span;
+                        self.enter(self.rate(*c), span);
+                        own.push((self.rate(*c), span));
                     }
                     // A loop left under a varying condition runs a varying number of times.
                     if let Some((rate, span)) = self.exit_conditions(body, 0) {
@@ -229,23 +243,29 @@ impl Analysis<'_> {
                         }
                         inner = inner.join(Rate { perlight: false, ..rate });
                         self.enter(rate, span);
+                        own.push((rate, span));
                     }
+                    self.push_frame(&own);
                     self.block(body, inner, origin, in_light_loop);
                     self.block(step, inner, origin, in_light_loop);
+                    self.frames.pop();
                     self.inlined = saved;
                 }
                 Stmt::Inline { function, body, .. } => {
                     let (mut inner, mut origin) = (control, control_origin);
                     let saved = self.inlined.clone();
                     self.inlined.push((function.clone(), Rate::CONSTANT, None));
-                    if let Some((rate, span)) = self.exit_conditions(body, u32::MAX) {
+                    let exit = self.exit_conditions(body, u32::MAX);
+                    if let Some((rate, span)) = exit {
                         if rate.frequency > inner.frequency {
                             origin = Some(span);
                         }
                         inner = inner.join(Rate { perlight: false, ..rate });
                         self.enter(rate, span);
                     }
+                    self.push_frame(exit.as_slice());
                     self.block(body, inner, origin, in_light_loop);
+                    self.frames.pop();
                     self.inlined = saved;
                 }
                 Stmt::Illuminance { args, body } | Stmt::Emit { args, body, .. } => {
@@ -260,10 +280,14 @@ impl Analysis<'_> {
                     }
                     let lights = matches!(stmt, Stmt::Illuminance { .. });
                     let saved = self.inlined.clone();
-                    for a in args {
-                        self.enter(self.rate(*a), self.shader.exprs[a.0 as usize].span);
+                    let own: Vec<(Rate, Span)> =
+                        args.iter().map(|a| (self.rate(*a), self.shader.exprs[a.0 as usize].span)).collect();
+                    for (rate, span) in &own {
+                        self.enter(*rate, *span);
                     }
+                    self.push_frame(&own);
                     self.block(body, inner, origin, in_light_loop || lights);
+                    self.frames.pop();
                     self.inlined = saved;
                 }
                 Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
@@ -280,6 +304,31 @@ impl Analysis<'_> {
             }
             *control = control.join(Rate { perlight: false, ..rate });
         }
+    }
+
+    /// Enters a construct whose own conditions are `conds` (rate and span of each).
+    fn push_frame(&mut self, conds: &[(Rate, Span)]) {
+        let mut frame = (Rate::CONSTANT, None);
+        for (rate, span) in conds {
+            if rate.frequency > frame.0.frequency {
+                frame.1 = Some(*span);
+            }
+            frame.0 = frame.0.join(Rate { perlight: false, ..*rate });
+        }
+        self.frames.push(frame);
+    }
+
+    /// The control rate of the constructs entered since `depth` (with the condition that raised it
+    /// most): what a store answers to in a variable declared with `depth` constructs around it.
+    fn control_since(&self, depth: usize) -> (Rate, Option<Span>) {
+        let mut control = (Rate::CONSTANT, None);
+        for (rate, span) in self.frames.get(depth..).unwrap_or_default() {
+            if rate.frequency > control.0.frequency {
+                control.1 = *span;
+            }
+            control.0 = control.0.join(*rate);
+        }
+        control
     }
 
     /// The control rate inside a statement conditioned on `cond`.
@@ -383,6 +432,31 @@ impl Analysis<'_> {
         }
         match root(place) {
             Target::Local(l) => {
+                // A declared variable initialised where it is declared begins its life there,
+                // each time control reaches the declaration, and is read only in its scope: the
+                // conditions around the declaration choose which points see it, not what they
+                // see. Its stores answer only to the conditions entered since (and to their own
+                // indices): a `constant` counter declared and stepped inside a varying branch.
+                let local = &self.shader.locals[l.0 as usize];
+                if local.declared
+                    && matches!(place, Place::Local(_))
+                    && crate::ir::stores::is_declaration(span, local.span)
+                {
+                    self.declared_at[l.0 as usize] = Some(self.frames.len());
+                }
+                if local.declared
+                    && let Some(depth) = self.declared_at[l.0 as usize]
+                {
+                    let (scope, scope_origin) = self.control_since(depth);
+                    if scope.frequency < control.frequency {
+                        control = scope.join(index_control);
+                        origin = if index_control.frequency > scope.frequency {
+                            index_origin
+                        } else {
+                            scope_origin
+                        };
+                    }
+                }
                 // A variable with a declared rate whose only store is its initialiser, with a
                 // value of that rate, is read only after its declaration (its scope), where it
                 // holds that value whatever control flow the declaration is under: a `constant`

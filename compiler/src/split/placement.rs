@@ -220,3 +220,143 @@ fn expr(
     memo[id.0 as usize] = Some(stage);
     stage
 }
+
+#[cfg(test)]
+mod tests {
+    //! `exits_of` (issue 23: one walk of the body, where each `if` used to walk its whole `else
+    //! if` chain again) against the definition it replaced, statement by statement.
+
+    use super::*;
+    use crate::syntax::preprocess::MemoryLoader;
+
+    /// The checked and differentiated shader of `src`.
+    fn shader(src: &str) -> Shader {
+        let checked = crate::check_source("placement.sl", src, &MemoryLoader::default());
+        assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
+        let mut shader = checked.program.shaders[0].clone();
+        crate::opt::derivs::differentiate(&mut shader);
+        shader
+    }
+
+    /// Whether a block contains a `break`, `continue` or `return` at any depth outside loops.
+    fn leaves(block: &Block) -> bool {
+        block.iter().any(|s| match s {
+            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => true,
+            Stmt::If { then, otherwise, .. } => leaves(then) || leaves(otherwise),
+            Stmt::Inline { body, .. } => leaves(body),
+            _ => false,
+        })
+    }
+
+    /// The exit stage of `stmt` by the old definition: each `if` walks everything below it.
+    fn reference(p: &Placement, stmt: &Stmt) -> StageKind {
+        let within = |b: &Block| b.iter().map(|s| reference(p, s)).max().unwrap_or(StageKind::Host);
+        match stmt {
+            Stmt::If { cond, then, otherwise } => {
+                let inner = within(then).max(within(otherwise));
+                if leaves(then) || leaves(otherwise) { inner.max(p.of(*cond)) } else { inner }
+            }
+            Stmt::Inline { body, .. } => within(body),
+            _ => StageKind::Host,
+        }
+    }
+
+    /// Checks every statement of `block` (nested ones too) against the reference; returns how
+    /// many `if`s and inlined calls were checked and how many leave under a condition the host
+    /// cannot decide (`s` is per vertex).
+    fn check(p: &Placement, block: &Block, counts: &mut (usize, usize)) {
+        for stmt in block {
+            assert_eq!(p.exit_stage(stmt), reference(p, stmt), "{stmt:?}");
+            if matches!(stmt, Stmt::If { .. } | Stmt::Inline { .. }) {
+                counts.0 += 1;
+                counts.1 += usize::from(p.exit_stage(stmt) != StageKind::Host);
+            }
+            match stmt {
+                Stmt::If { then, otherwise, .. } => {
+                    check(p, then, counts);
+                    check(p, otherwise, counts);
+                }
+                Stmt::Loop { body, step, .. } => {
+                    check(p, body, counts);
+                    check(p, step, counts);
+                }
+                Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                    check(p, body, counts)
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// A chain of `n` links on `cond(i)`, link `k` (if any) leaving by `exit`.
+    fn chain(n: usize, cond: &str, exit: Option<(usize, &str)>) -> String {
+        (0..n)
+            .map(|i| {
+                let head = if i == 0 { "if" } else { "else if" };
+                let body = match exit {
+                    Some((k, e)) if k == i => e.to_string(),
+                    _ => format!("v += {i};"),
+                };
+                format!("    {head} ({}) {{ {body} }}\n", cond.replace('#', &i.to_string()))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn exit_stages_match_the_definition_they_replaced() {
+        let varying = "s < # / 40.0";
+        let uniform = "u < #";
+        let cases: Vec<(String, usize)> = vec![
+            // A varying return deep in the chain: every link above it leaves, per vertex.
+            (
+                format!(
+                    "surface c(float u = 0) {{\n    float v = 0;\n{}    Ci = v;\n}}\n",
+                    chain(40, varying, Some((30, "return;")))
+                ),
+                31,
+            ),
+            // The same chain on a uniform parameter leaves on the host.
+            (
+                format!(
+                    "surface c(float u = 0) {{\n    float v = 0;\n{}    Ci = v;\n}}\n",
+                    chain(40, uniform, Some((30, "return;")))
+                ),
+                0,
+            ),
+            // No exit at all.
+            (
+                format!(
+                    "surface c(float u = 0) {{\n    float v = 0;\n{}    Ci = v;\n}}\n",
+                    chain(40, varying, None)
+                ),
+                0,
+            ),
+            // A `break` inside a loop stays inside it: the chain in the loop still records it.
+            (
+                format!(
+                    "surface c(float u = 0) {{\n    float v = 0;\n    float i;\n    for (i = 0; i < 2; i += 1) {{\n{}    }}\n    Ci = v;\n}}\n",
+                    chain(20, varying, Some((5, "break;")))
+                ),
+                6,
+            ),
+            // A return inside an inlined function called from a chain: the call leaves the
+            // function under a varying condition (its own chain), nested in the shader's.
+            (
+                format!(
+                    "float f(float x) {{\n    float v = 0;\n{}    return v;\n}}\nsurface c(float u = 0) {{\n    float v = 0;\n{}    Ci = v;\n}}\n",
+                    chain(10, "x < # / 10.0", Some((4, "return 1;"))),
+                    chain(10, varying, Some((3, "v = f(s);")))
+                ),
+                5 + 1 + 4,
+            ),
+        ];
+        for (src, varying_exits) in cases {
+            let shader = shader(&src);
+            let p = Placement::new(&shader);
+            let mut counts = (0, 0);
+            check(&p, &shader.body, &mut counts);
+            assert!(counts.0 >= 10, "{} ifs and calls checked in\n{src}", counts.0);
+            assert_eq!(counts.1, varying_exits, "exits under varying conditions in\n{src}");
+        }
+    }
+}

@@ -119,6 +119,12 @@ impl Gpu {
         self.pipelines.len()
     }
 
+    /// How many render pipelines this device has made, kept or not (pipeline creation is most
+    /// of a small render's time: tests count it).
+    pub fn pipelines_made(&self) -> usize {
+        self.pipelines.made()
+    }
+
     /// The device's limits, which renders and dispatches are checked against.
     pub fn limits(&self) -> wgpu::Limits {
         self.device.limits()

@@ -8,6 +8,7 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 use std::hash::{DefaultHasher, Hash, Hasher};
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A draw's GPU objects, made before the render pass borrows them.
 pub(super) struct Prepared {
@@ -16,9 +17,6 @@ pub(super) struct Prepared {
     pub vertex_buffers: Vec<wgpu::Buffer>,
     pub index_buffer: wgpu::Buffer,
     pub index_count: u32,
-    /// The pipeline to keep under its key once the device has accepted it (a pipeline made
-    /// inside a failed error scope is invalid and must not be reused).
-    pub made: Option<(u64, Kept)>,
 }
 
 /// A kept pipeline and the bind group layouts it was made with (its bind groups, made per draw,
@@ -30,9 +28,13 @@ pub(super) struct Kept {
     textures: Option<wgpu::BindGroupLayout>,
 }
 
-/// The pipelines a device has made for fingerprinted draws, by `pipeline_key`.
+/// The pipelines a device has made for fingerprinted draws, by `pipeline_key`, and how many render
+/// pipelines it has made in all.
 #[derive(Default)]
-pub(super) struct Pipelines(Mutex<HashMap<u64, Kept>>);
+pub(super) struct Pipelines {
+    kept: Mutex<HashMap<u64, Kept>>,
+    made: AtomicUsize,
+}
 
 /// More than this many kept pipelines and the next one starts the store afresh: a long session
 /// of edited shaders must not keep every version alive.
@@ -40,12 +42,12 @@ const MAX_KEPT: usize = 256;
 
 impl Pipelines {
     fn get(&self, key: u64) -> Option<Kept> {
-        self.0.lock().ok()?.get(&key).cloned()
+        self.kept.lock().ok()?.get(&key).cloned()
     }
 
     /// Keeps `kept` under `key`.
     pub(super) fn keep(&self, key: u64, kept: Kept) {
-        if let Ok(mut map) = self.0.lock() {
+        if let Ok(mut map) = self.kept.lock() {
             if map.len() >= MAX_KEPT {
                 map.clear();
             }
@@ -55,7 +57,12 @@ impl Pipelines {
 
     /// How many pipelines are kept.
     pub(super) fn len(&self) -> usize {
-        self.0.lock().map_or(0, |m| m.len())
+        self.kept.lock().map_or(0, |m| m.len())
+    }
+
+    /// How many render pipelines the device has made.
+    pub(super) fn made(&self) -> usize {
+        self.made.load(Ordering::Relaxed)
     }
 }
 
@@ -74,15 +81,24 @@ fn pipeline_key(draw: &Draw, format: wgpu::TextureFormat) -> Option<u64> {
 
 impl Gpu {
     /// Pipeline, bind groups and buffers for one draw; the pipeline is a kept one when the draw
-    /// has a fingerprint that was drawn before.
-    pub(super) fn prepare(&self, draw: &Draw, format: wgpu::TextureFormat) -> Result<Prepared, GpuError> {
+    /// has a fingerprint that was drawn before, or one made earlier in this render (`fresh`,
+    /// where a pipeline this draw makes is added: objects sharing a module share it).
+    pub(super) fn prepare(
+        &self,
+        draw: &Draw,
+        format: wgpu::TextureFormat,
+        fresh: &mut HashMap<u64, Kept>,
+    ) -> Result<Prepared, GpuError> {
         let key = pipeline_key(draw, format);
-        let (kept, made) = match key.and_then(|k| self.pipelines.get(k)) {
-            Some(kept) => (kept, None),
+        let found = key.and_then(|k| self.pipelines.get(k).or_else(|| fresh.get(&k).cloned()));
+        let kept = match found {
+            Some(kept) => kept,
             None => {
                 let kept = self.make_pipeline(draw, format);
-                let made = key.map(|k| (k, kept.clone()));
-                (kept, made)
+                if let Some(k) = key {
+                    fresh.insert(k, kept.clone());
+                }
+                kept
             }
         };
         let mut groups = Vec::new();
@@ -130,7 +146,6 @@ impl Gpu {
             vertex_buffers,
             index_buffer,
             index_count: draw.indices.len() as u32,
-            made,
         })
     }
 
@@ -253,6 +268,7 @@ impl Gpu {
             multiview_mask: None,
             cache: None,
         });
+        self.pipelines.made.fetch_add(1, Ordering::Relaxed);
         Kept { pipeline, uniforms, textures }
     }
 }

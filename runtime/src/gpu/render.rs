@@ -106,20 +106,21 @@ impl Gpu {
         let row = target.width * bytes_per_pixel;
         let padded_row = row.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         // Each draw's pipeline in a scope of its own, so that a shader the device refuses (too
-        // large, an unsupported feature) is reported with the draw it belongs to.
+        // large, an unsupported feature) is reported with the draw it belongs to. A pipeline made
+        // here serves the later draws of the same module too: its scope was clean.
+        let mut fresh = std::collections::HashMap::new();
         let prepared = draws
             .iter()
             .enumerate()
-            .map(|(i, d)| match self.scoped(|| self.prepare(d, format)) {
+            .map(|(i, d)| match self.scoped(|| self.prepare(d, format, &mut fresh)) {
                 Ok(Ok(p)) => Ok(p),
                 Ok(Err(e)) | Err(e) => Err(in_draw(i, e)),
             })
             .collect::<Result<Vec<_>, _>>()?;
-        // Accepted by the device (the scopes above are clean): these pipelines may be reused.
-        for p in &prepared {
-            if let Some((key, kept)) = &p.made {
-                self.pipelines.keep(*key, kept.clone());
-            }
+        // Accepted by the device (the scopes above are clean; a pipeline made inside a failed
+        // one is invalid): these pipelines may be reused by later renders.
+        for (key, kept) in fresh {
+            self.pipelines.keep(key, kept);
         }
         let readback = self.scoped(|| self.encode_render(target, &prepared, format, padded_row))??;
         let bytes = self.read_buffer(&readback)?;

@@ -18,8 +18,9 @@ use patina_compiler::backend::cpu::{EvalError, Evaluator};
 use patina_compiler::syntax::preprocess::SourceLoader;
 
 use crate::gpu::Gpu;
-use crate::kernel::{run_kernel, run_kernel_lowered};
+use crate::kernel::{Resources, run_prepared};
 use args::{Points, points};
+use patina_compiler::backend::cpu::Texture;
 use patina_compiler::backend::wgsl::Lowering;
 pub use subjects::{Subject, subjects};
 
@@ -122,12 +123,28 @@ pub fn sweep(subject: &Subject, loader: &dyn SourceLoader, options: &Options, gp
         args: subject.args.iter().filter(|a| compiled.cpu.slot(&a.slot).is_some()).cloned().collect(),
         ..subject.clone()
     };
+    // The textures it looks up, loaded as the renderer loads them (a generated one by its name, a
+    // file beside the subject's), so that the interpreter and the kernel read the same texels.
+    let base = std::path::Path::new(&subject.file).parent().unwrap_or(std::path::Path::new(""));
+    let textures = match compiled
+        .cpu
+        .textures()
+        .iter()
+        .map(|name| crate::render::textures::load(name, base).map(|t| (name.clone(), t)))
+        .collect::<Result<Vec<_>, _>>()
+    {
+        Ok(textures) => textures,
+        Err(e) => {
+            row.outcome = Err(format!("not swept: {e}"));
+            return row;
+        }
+    };
     let pts = points(&subject.args, options.random, options.seed);
     row.points = pts.count;
     let outputs: Vec<&str> = subject.outputs.iter().map(String::as_str).collect();
     let mut m = Measures::default();
-    let f64_run = interpret::<f64>(&compiled, subject, &pts, &outputs, options.budget);
-    let f32_run = interpret::<f32>(&compiled, subject, &pts, &outputs, options.budget);
+    let f64_run = interpret::<f64>(&compiled, subject, &textures, &pts, &outputs, options.budget);
+    let f32_run = interpret::<f32>(&compiled, subject, &textures, &pts, &outputs, options.budget);
     let mut endless = false;
     for (k, run) in [&f64_run, &f32_run].into_iter().enumerate() {
         match run {
@@ -151,7 +168,15 @@ pub fn sweep(subject: &Subject, loader: &dyn SourceLoader, options: &Options, gp
     if let (Some(gpu), false) = (gpu, endless) {
         let inputs: Vec<(&str, &[f64])> =
             subject.args.iter().zip(&pts.columns).map(|(a, c)| (a.slot.as_str(), c.as_slice())).collect();
-        match run_kernel(gpu, &compiled.shader, &[], pts.count, &inputs, &outputs) {
+        // Prepared as the interpreter's compile prepares it: texture lookups become texel
+        // fetches, which the kernel binds (it cannot take a lookup as written).
+        let mut shader = compiled.shader.clone();
+        patina_compiler::opt::prepare(&mut shader);
+        let run = |lowering| {
+            let resources = Resources { textures: &textures, lowering, ..Resources::default() };
+            run_prepared(gpu, &shader, &resources, pts.count, &inputs, &outputs)
+        };
+        match run(Lowering::Exact) {
             Ok(columns) => {
                 m.nonfinite[2] = Some(count_nonfinite(subject, &pts, &columns, BACKENDS[2], &mut m.failures));
                 if let Ok(f32_columns) = &f32_run {
@@ -161,8 +186,7 @@ pub fn sweep(subject: &Subject, loader: &dyn SourceLoader, options: &Options, gp
             Err(e) => m.gpu_error = Some(e.to_string()),
         }
         if m.gpu_error.is_none() {
-            match run_kernel_lowered(gpu, &compiled.shader, &[], Lowering::Fast, pts.count, &inputs, &outputs)
-            {
+            match run(Lowering::Fast) {
                 Ok(columns) => {
                     if let Ok(f64_columns) = &f64_run {
                         m.fast_vs_f64 = Some(worst(&columns, f64_columns));
@@ -181,12 +205,16 @@ pub fn sweep(subject: &Subject, loader: &dyn SourceLoader, options: &Options, gp
 fn interpret<F: Real>(
     compiled: &subjects::Compiled,
     subject: &Subject,
+    textures: &[(String, Texture)],
     pts: &Points,
     outputs: &[&str],
     budget: u64,
 ) -> Result<Vec<Vec<f64>>, (usize, String)> {
     let mut eval = Evaluator::<F>::new(&compiled.cpu);
     eval.set_budget(budget);
+    for (name, texture) in textures {
+        eval.set_texture(name, texture.clone()).map_err(|e| (0, format!("texture `{name}`: {e}")))?;
+    }
     let uniform: Vec<bool> = subject
         .args
         .iter()

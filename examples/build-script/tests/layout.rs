@@ -37,8 +37,9 @@ macro_rules! offsets {
 fn plastic_struct_matches_its_interface() {
     use plastic::*;
     assert_eq!(size_of::<Uniforms>(), UNIFORM_SIZE);
-    let offsets = offsets!(Uniforms; object_to_camera, normal_to_camera, camera_to_clip, roughness,
-        Ci_h, Ci_h1_, Ci_h2_, Os, Cs, l0_intensity, l0_lightcolor, l0_from);
+    // `e_h`: specular's exponent 1 / max(roughness, 1e-30), which the host part computes once.
+    let offsets = offsets!(Uniforms; object_to_camera, normal_to_camera, camera_to_clip, Ci_h, Ci_h1_,
+        Ci_h2_, e_h, Os, Cs, l0_intensity, l0_lightcolor, l0_from);
     check(INTERFACE_JSON, size_of::<Uniforms>(), offsets, FIELDS, WGSL);
     const { assert!(NEEDS_HOST) };
     assert_eq!((LOCATION_P, LOCATION_N), (0, 1));

@@ -9,10 +9,7 @@
 // pixel's footprint in solid space (hart_pixel_dp); the noise terms finer than the footprint
 // also fade to their mean. The supersampled reference is the same scene with aa 0 and
 // output.supersample.
-//
-// (The presets cannot be called under a uniform condition or loop, so there is one shader per
-// texture rather than a `material` switch, and no supersampling loop in the shader: their
-// `constant` loop counters would then be assigned under a uniform condition, E0605.)
+
 #include <solid.sl>
 
 // The solid coordinates of the shading point (scales are modest: 1e30 times a coordinate of 1e30

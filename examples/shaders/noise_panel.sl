@@ -36,11 +36,6 @@ surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
     // with Euclidean F1 (tile 13).
     float region = k == 1 ? 0 : (k == 15 ? 13 : k);
     point p = point(frequency * u + 17 * region, frequency * v + 5 * region, slice);
-    // vnoise, vgnoise, vcnoise, scnoise and worley_basis declare their loop counters `constant`
-    // (compiler/stdlib/lattice.sl, cellular.sl), so they cannot be called under a varying condition
-    // (E0605): they are evaluated at every point, outside the tile selection, and selected below.
-    float vn = vnoise(p), vg = vgnoise(p), vc = vcnoise(p), sc = scnoise(p);
-    matrix wb = worley_basis(p, k == 15 ? 1 : 0);
     float value = 0, offset = 0.5, gain = 0.5;
     if (k < 6) {
         if (k == 0) {
@@ -61,7 +56,7 @@ surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
         }
     } else if (k < 12) {
         if (k == 6) {
-            value = vn;
+            value = vnoise(p);
             gain = 0.4;
         } else if (k == 7) {
             value = vnoise_linear(p);
@@ -69,13 +64,13 @@ surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
             value = gnoise(p);
             gain = 0.85;
         } else if (k == 9) {
-            value = vg;
+            value = vgnoise(p);
             gain = 0.7;
         } else if (k == 10) {
-            value = vc;
+            value = vcnoise(p);
             gain = 0.38;
         } else {
-            value = sc;
+            value = scnoise(p);
             gain = 0.7;
         }
     } else if (k < 18) {
@@ -83,18 +78,12 @@ surface noise_panel(float octaves = 6; float frequency = 4; float slice = 0.37;
             value = cellnoise3(p, 0);
             offset = 0;
             gain = 1;
-        } else if (k == 13) {
-            value = wb[0][0];
+        } else if (k < 16) {
+            // Worley's F1 (13), F2 - F1 (14) and Manhattan F1 (15) from one inlined basis.
+            matrix wb = worley_basis(p, k == 15 ? 1 : 0);
+            value = k == 14 ? wb[0][1] - wb[0][0] : wb[0][0];
             offset = 0;
-            gain = 0.5;
-        } else if (k == 14) {
-            value = wb[0][1] - wb[0][0];
-            offset = 0;
-            gain = 1;
-        } else if (k == 15) {
-            value = wb[0][0];
-            offset = 0;
-            gain = 0.33;
+            gain = k == 13 ? 0.5 : (k == 14 ? 1 : 0.33);
         } else if (k == 16) {
             value = distnoise(p, 1);
         } else {

@@ -45,8 +45,6 @@ struct Analysis<'s> {
     index_origins: rustc_hash::FxHashSet<Span>,
     /// Stores to check once rates are final: (place root, value, control rate, control origin, store span).
     checks: Vec<(Target, ExprId, Rate, Option<Span>, Span)>,
-    /// The locals whose only store is their declaration (`ir::stores`).
-    initialised_only: Vec<bool>,
     /// The inlined calls being walked, innermost last: the function, and the control rate (with
     /// its origin) of the conditions inside its body so far. A declared variable of an inlined
     /// function is checked against these only: it exists only while the body runs, so a
@@ -82,13 +80,7 @@ pub fn infer(shader: &mut Shader, diags: &mut Diagnostics) {
         .iter()
         .map(|l| Origin { span: l.span, why: if l.declared { Why::Declared } else { Why::Constant } })
         .collect();
-    let initialised_only = crate::ir::stores::stores(shader)
-        .iter()
-        .zip(&shader.locals)
-        .map(|(s, l)| s.only_initialiser(l.span).is_some())
-        .collect();
     let mut a = Analysis {
-        initialised_only,
         inlined: Vec::new(),
         frames: Vec::new(),
         declared_at: vec![None; shader.locals.len()],
@@ -457,19 +449,7 @@ impl Analysis<'_> {
                         };
                     }
                 }
-                // A variable with a declared rate whose only store is its initialiser, with a
-                // value of that rate, is read only after its declaration (its scope), where it
-                // holds that value whatever control flow the declaration is under: a `constant`
-                // table declared in a loop or in a function inlined into one, a `uniform float
-                // k = 2` declared in a varying branch.
                 let local = &self.shader.locals[l.0 as usize];
-                if local.declared
-                    && self.initialised_only[l.0 as usize]
-                    && value_rate.fits_in(local.rate)
-                    && !value_rate.perlight
-                {
-                    (control, origin) = (Rate::CONSTANT, None);
-                }
                 if !local.declared {
                     let new = local.rate.join(value_rate).join(control);
                     if new != local.rate {

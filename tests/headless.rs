@@ -34,7 +34,7 @@ fn the_headless_example_draws_what_patina_render_draws() {
 
     let scene = Scene::load(format!("{}/examples/headless.toml", env!("CARGO_MANIFEST_DIR"))).expect("scene");
     let prepared = render::prepare(&scene).expect("prepare");
-    let reference = render::render(&prepared, render::Backend::Gpu, Some(&gpu)).expect("render");
+    let reference = render::render(&prepared, render::Backend::Gpu, Some(gpu)).expect("render");
     // The renderer's picture as `patina render` writes it: 8 bits a channel.
     let written = dir.join("reference.png");
     reference.write_png(&written).expect("write");

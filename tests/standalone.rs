@@ -309,7 +309,7 @@ fn standalone_matches_the_renderer(name: &str) {
     let path = format!("{}/examples/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
     let scene = Scene::load(&path).expect("scene");
     let reference =
-        render::render(&render::prepare(&scene).expect("prepare"), render::Backend::Gpu, Some(&gpu))
+        render::render(&render::prepare(&scene).expect("prepare"), render::Backend::Gpu, Some(gpu))
             .expect("render");
 
     let (wgsl, json) = compile(&scene);

@@ -201,13 +201,13 @@ fn sphere_scene_of_plastic_matches_on_both_backends() {
     let scene = testing::sphere_scene(example("shaders/plastic.sl")).unwrap();
     assert_eq!((scene.output.width, scene.output.height), (64, 48));
     let Some(gpu) = patina::runtime::gpu::for_tests() else { return };
-    let result = testing::compare_backends(&scene, &gpu).unwrap();
+    let result = testing::compare_backends(&scene, gpu).unwrap();
     assert!(result.passes, "GPU and CPU differ: {:?}", result.comparison);
     assert_eq!(result.thresholds, patina::runtime::image::Thresholds::default());
     // The sphere is lit: the centre pixel is far brighter than the background.
     let centre = result.cpu.get(32, 24).unwrap();
     assert!(centre[0] > 0.2, "{centre:?}");
     assert_eq!(result.comparison.pixels, 64 * 48);
-    let err = testing::compare_backends_file(example("scenes/no-such-scene.toml"), &gpu).unwrap_err();
+    let err = testing::compare_backends_file(example("scenes/no-such-scene.toml"), gpu).unwrap_err();
     assert!(matches!(err, TestError::Scene(_)), "{err:?}");
 }

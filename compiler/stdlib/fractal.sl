@@ -27,7 +27,7 @@
 // than the first (compiler/stdlib/noise.sl: past 2^23 every f32 is an integer and the noise is 0; those
 // octaves then add nothing, which is finite but not detail).
 //
-// Precision (measured by compiler/tests/stdlib_fractal.rs and runtime/tests/stdlib_fractal_gpu.rs):
+// Precision (measured by compiler/tests/stdlib_fractal.rs and runtime/tests/stdlib/fractal_gpu.rs):
 // the f64 interpreter agrees with an independent Rust port to the last bit (tested within
 // 1e-12); the f32 interpreter is within 2.7e-6 of the port at the same f32 inputs and f32-rounded
 // scaled points (tested within 1e-5); the GPU is within 1.4e-6 of the f32 interpreter (tested

@@ -22,8 +22,8 @@
 // at large coordinates is only the coordinate's own rounding to f32, and against f64 at the exact
 // coordinate the f32 result stays within 1e-3 up to |coordinates| of 2^12 = 4096 (1.3e-3 at
 // 2^13, 0.18 at 2^20; above 2^23 every f32 is an integer and the noise is 0). The GPU (WGSL)
-// computes the same operations and agrees bit for bit (runtime/tests/stdlib_noise_gpu.rs). The
-// other functions here share that design; runtime/tests/stdlib_noise_family.rs measures them.
+// computes the same operations and agrees bit for bit (runtime/tests/stdlib/noise_gpu.rs). The
+// other functions here share that design; runtime/tests/stdlib/noise_family.rs measures them.
 // Derivatives (Du, filterwidth, ...) go through this code by automatic differentiation.
 
 #ifndef PATINA_NOISE_SL

@@ -19,7 +19,7 @@
 // log through pattern.sl's bias and gain), fractal_sphere (pow in fbm's weights) and
 // hypertexture_alpha (log) is plain arithmetic, sqrt, floor and the noise's integer hashing (no
 // exp, log, pow), so the GPU agrees with the interpreter bit for bit there; the measured
-// tolerances of the others are in docs/stdlib/volume.md (runtime/tests/stdlib_volume.rs).
+// tolerances of the others are in docs/stdlib/volume.md (runtime/tests/stdlib/volume.rs).
 
 #ifndef PATINA_VOLUME_SL
 #define PATINA_VOLUME_SL

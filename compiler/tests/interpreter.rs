@@ -291,7 +291,7 @@ fn light_construct_arguments_are_converted_and_counted() {
 #[test]
 fn nested_integrate_sums_over_every_light() {
     // The inner `integrate` inside a per-light value is the sum over all lights, not the outer
-    // light's own term (found by runtime/tests/generated.rs: the interpreter gave half of this
+    // light's own term (found by runtime/tests/conformance/generated.rs: the interpreter gave half of this
     // with two lights, the GPU the sum).
     let src = "surface shader float4 t(primitive group float k) {
         perlight float3 a = {1, 2, 3};

@@ -38,14 +38,17 @@ banks_explicit(primitive group texref anisotex,
 // The table entry of an N x N table at (s, t), filtered as a texture lookup is (bilinear between
 // texel centres, wrapping at the border: compiler/src/opt/textures.rs), with each texel computed
 // by banks_table; N = 0 evaluates banks_table at (s, t) itself.
+// The table wraps, so s and t are taken modulo 1 first, and size is at most 8192 (the largest 2D
+// texture every WebGPU device has): s * size then stays far inside f32's range.
 float banks_lookup(float s, float t, float kd, float ks, float n, float size)
 {
     float exact = banks_table(s, t, kd, ks, n);
-    float x = s * size - 0.5, y = t * size - 0.5;
+    float entries = min(size, 8192);
+    float x = (s - floor(s)) * entries - 0.5, y = (t - floor(t)) * entries - 0.5;
     float x0 = floor(x), y0 = floor(y);
     float fx = x - x0, fy = y - y0;
-    float sx0 = (mod(x0, size) + 0.5) / size, sx1 = (mod(x0 + 1, size) + 0.5) / size;
-    float sy0 = (mod(y0, size) + 0.5) / size, sy1 = (mod(y0 + 1, size) + 0.5) / size;
+    float sx0 = (mod(x0, entries) + 0.5) / entries, sx1 = (mod(x0 + 1, entries) + 0.5) / entries;
+    float sy0 = (mod(y0, entries) + 0.5) / entries, sy1 = (mod(y0 + 1, entries) + 0.5) / entries;
     float top = mix(banks_table(sx0, sy0, kd, ks, n), banks_table(sx1, sy0, kd, ks, n), fx);
     float bottom = mix(banks_table(sx0, sy1, kd, ks, n), banks_table(sx1, sy1, kd, ks, n), fx);
     return select(size > 0, mix(top, bottom, fy), exact);

@@ -1,5 +1,5 @@
-// A box-filtered brick wall: macros, a helper function, uniform parameters, `if`, compound
-// assignment and the filtered pulse of the antialiasing chapter.
+// A box-filtered brick wall: macros, uniform parameters, `if`, compound assignment and the
+// filtered pulse train of the antialiasing chapter.
 #include "pattern.sl"
 
 #define BRICK_WIDTH 0.25
@@ -10,15 +10,14 @@
 #define MWF (MORTAR * 0.5 / BM_WIDTH)
 #define MHF (MORTAR * 0.5 / BM_HEIGHT)
 
-// The integral of a pulse train of duty cycle `edge`, used to box-filter it.
-#define PULSE_INTEGRAL(x, edge) (floor(x) * (1 - 2 * (edge)) + max(0, mod(x, 1) - (edge)))
-
+// The box-filtered brick (1) or mortar (0) across one axis: the mean over [x - width/2,
+// x + width/2] of a pulse train of period 1 that is 1 on [edge, 1 - edge]. Peachey averages his
+// integral `sintegral` (L2126), which lacks the upper clamp at 1 - edge; pattern.sl's
+// filteredpulsetrain has it, and gives the pulse itself where the footprint has no width (no
+// derivatives, or s constant across the pixel), where the difference quotient would be 0/0.
 float filtered_pulse_train(float edge, x, width)
 {
-    float x0 = x - width / 2;
-    float x1 = x0 + width;
-    return (PULSE_INTEGRAL(x1, edge) - PULSE_INTEGRAL(x0, 1 - edge)
-            - PULSE_INTEGRAL(x0, edge) + PULSE_INTEGRAL(x0, 1 - edge)) / width;
+    return filteredpulsetrain(edge, 1, x, width);
 }
 
 surface

@@ -2,7 +2,7 @@
 //! file under a directory (Aqsis's standard set in `../shared/corpus/aqsis/`) is checked, and each
 //! shader that checks is rendered small on both backends in a scene made for its kind, the GPU's
 //! picture compared with the CPU reference's by the gallery's thresholds. `patina corpus` writes
-//! the results as a table and a contact sheet; `runtime/tests/corpus.rs` asserts them.
+//! the results as a table and a contact sheet; `runtime/tests/renderer/corpus.rs` asserts them.
 //!
 //! The scenes: a surface on a unit sphere under a point and an ambient light; a light on a
 //! plastic sphere above a plastic floor (with a dim ambient light beside it, and a shadow map

@@ -86,9 +86,9 @@ pub struct CorpusArgs {
 /// Arguments of `patina stability`.
 #[derive(clap::Args, Debug)]
 pub struct StabilityArgs {
-    /// The shader file whose functions and surface shaders to sweep.
-    #[arg(required_unless_present = "stdlib", conflicts_with = "stdlib")]
-    file: Option<PathBuf>,
+    /// The shader files whose functions and surface shaders to sweep.
+    #[arg(value_name = "FILE", required_unless_present = "stdlib", conflicts_with = "stdlib")]
+    files: Vec<PathBuf>,
     /// Sweep every function of every standard-library module.
     #[arg(long)]
     stdlib: bool,

@@ -1,4 +1,4 @@
-//! `patina stability`: the extreme-input sweep of the standard library or of a user's file, as a
+//! `patina stability`: the extreme-input sweep of the standard library or of a user's files, as a
 //! table; exit 1 when a finite input produced a non-finite output.
 
 use std::process::ExitCode;
@@ -112,19 +112,24 @@ fn gather(args: &StabilityArgs) -> Result<(Vec<Subject>, Box<dyn SourceLoader>),
         }
         return Ok((all, Box::new(loader)));
     }
-    let Some(path) = &args.file else { return Err("give a FILE or --stdlib".into()) };
-    let name = path.to_string_lossy().into_owned();
-    let text = match read_source_file(path) {
-        Ok(Some(text)) => text,
-        Ok(None) => return Err(format!("cannot read `{name}`: no such file")),
-        Err(reason) => return Err(format!("cannot read `{name}`: {reason}")),
-    };
-    let loader = FsLoader { include_dirs: args.include.clone() };
-    let checked = patina_compiler::check_source(&name, &text, &loader);
-    if checked.has_errors() {
-        eprint!("{}", diag::render_text(&checked.sources, &checked.diagnostics.clone().into_vec()));
-        return Err(format!("`{name}` does not check; nothing swept"));
+    if args.files.is_empty() {
+        return Err("give a FILE or --stdlib".into());
     }
-    let subjects = stability::subjects(&name, &text, &loader, false)?;
-    Ok((subjects, Box::new(loader)))
+    let loader = FsLoader { include_dirs: args.include.clone() };
+    let mut all = Vec::new();
+    for path in &args.files {
+        let name = path.to_string_lossy().into_owned();
+        let text = match read_source_file(path) {
+            Ok(Some(text)) => text,
+            Ok(None) => return Err(format!("cannot read `{name}`: no such file")),
+            Err(reason) => return Err(format!("cannot read `{name}`: {reason}")),
+        };
+        let checked = patina_compiler::check_source(&name, &text, &loader);
+        if checked.has_errors() {
+            eprint!("{}", diag::render_text(&checked.sources, &checked.diagnostics.clone().into_vec()));
+            return Err(format!("`{name}` does not check; nothing swept"));
+        }
+        all.extend(stability::subjects(&name, &text, &loader, false)?);
+    }
+    Ok((all, Box::new(loader)))
 }

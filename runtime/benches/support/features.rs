@@ -1,4 +1,4 @@
-//! The scene of the binding benchmark (runtime/benches/binding.rs), which runtime/tests/bind.rs
+//! The scene of the binding benchmark (runtime/benches/binding.rs), which runtime/tests/renderer/bind.rs
 //! also renders: `features.sl`, a shader with five feature flags, on a sphere under `lights`
 //! point lights, with every flag fixed (only the specular lobe on).
 

@@ -1,4 +1,4 @@
-// The benchmark's shader (runtime/benches/binding.rs), also rendered by runtime/tests/bind.rs: five
+// The benchmark's shader (runtime/benches/binding.rs), also rendered by runtime/tests/renderer/bind.rs: five
 // feature flags, each behind its own branch: a texture, a noise-perturbed colour, an fBm bump of the
 // normal, a specular lobe per light and a rim term.
 #include <fractal.sl>

@@ -82,19 +82,27 @@ pub fn adapter_required() -> bool {
     std::env::var_os(GPU_ENV).is_none_or(|v| !v.eq_ignore_ascii_case("off"))
 }
 
-/// The device for tests that need a GPU: `None` when `PATINA_GPU=off`, otherwise a working `Gpu`.
+/// The device for tests that need a GPU: `None` when `PATINA_GPU=off`, otherwise the process's
+/// one shared `Gpu`, opened by the first test that asks.
+///
+/// One device per test process, not one per test: opening a device costs more than most GPU
+/// tests, and render pipelines kept by one test (see `Gpu::kept_pipelines`) serve the next. Sharing
+/// is safe because wgpu's error scopes are thread-local, so a test running beside another catches
+/// only its own errors. A test that counts pipelines or loses the device opens its own with
+/// [`Gpu::new`].
 ///
 /// # Panics
 /// When no adapter can be opened and the GPU is not turned off: a test that silently skipped on a
 /// machine without a driver would hide the missing driver.
-pub fn for_tests() -> Option<Gpu> {
+pub fn for_tests() -> Option<&'static Gpu> {
+    static SHARED: std::sync::OnceLock<Gpu> = std::sync::OnceLock::new();
     if !adapter_required() {
         return None;
     }
-    match Gpu::new() {
-        Ok(gpu) => Some(gpu),
+    Some(SHARED.get_or_init(|| match Gpu::new() {
+        Ok(gpu) => gpu,
         Err(e) => panic!("\n\n*** GPU tests need an adapter and none could be opened ***\n{e}\n\n"),
-    }
+    }))
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
 //! Internals of mesh construction; the shapes themselves are tested through the public API in
-//! `runtime/tests/mesh.rs`.
+//! `runtime/tests/renderer/mesh.rs`.
 
 use super::*;
 

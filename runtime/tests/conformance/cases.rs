@@ -1,5 +1,5 @@
 //! The conformance cases, shared by the compute harness (`conformance.rs`) and the render path
-//! (`conformance_render.rs`): the tolerance table, the argument domains, and each group of
+//! (`render.rs`): the tolerance table, the argument domains, and each group of
 //! call cases as a function returning its list.
 //!
 //! Each binary uses a different part of this module.

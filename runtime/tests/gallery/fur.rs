@@ -1,7 +1,7 @@
 //! Gallery scene `kajiya_kay_fur` (seed-digest §12 S7, §2 on Kajiya & Kay): a shell of procedural
 //! hair over a torus, ray-marched with Kajiya-Kay lighting and self-shadowing.
 //!
-//! The Kajiya-Kay identities already covered by `stdlib_lighting.rs` (sin(t, l) at t ∥ l and t ⊥ l,
+//! The Kajiya-Kay identities already covered by `stdlib/lighting.rs` (sin(t, l) at t ∥ l and t ⊥ l,
 //! the Lambert integral over the half cylinder built from eqs. 10-12, the specular peak scanning
 //! the eye in the plane of t and l) are not repeated. Here: the Lambert integral over the whole
 //! circumference with the lit half found by the clamp, with K_d = 2 k_d r (eq. 13); the highlight
@@ -336,8 +336,7 @@ fn gpu_only(label: &str, scene: &patina_runtime::scene::Scene) -> Option<Image> 
     use patina_runtime::render::{self, Backend};
     let gpu = patina_runtime::gpu::for_tests()?;
     let prepared = render::prepare(scene).unwrap_or_else(|e| panic!("{label}: {e}"));
-    let image =
-        render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
+    let image = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_finite(label, &image);
     Some(image)
 }

@@ -132,7 +132,7 @@ fn steam_density_is_non_negative_bounded_and_zero_outside_the_plume() {
         ("f32", program.cpu::<f32>(n, &inputs, &["d"]).remove(0)),
     ];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
-        runs.push(("GPU", program.gpu(&gpu, n, &inputs, &["d"]).remove(0)));
+        runs.push(("GPU", program.gpu(gpu, n, &inputs, &["d"]).remove(0)));
     }
     for (name, d) in &runs {
         support::assert_finite(&format!("steam density ({name})"), d, 1);
@@ -254,7 +254,7 @@ fn steam_march_obeys_the_exponential_opacity_law() {
     ];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
         // Measured 8e-6 in f32 on both (the depth is a sum of 16 terms rounded to f32).
-        runs.push(("GPU", march.gpu(&gpu, rays, &inputs, &outputs), 2e-5));
+        runs.push(("GPU", march.gpu(gpu, rays, &inputs, &outputs), 2e-5));
     }
     let mut dense = 0;
     for (name, out, tol) in &runs {
@@ -382,7 +382,7 @@ fn cumulus_density_is_zero_outside_the_warped_balls_and_never_nan() {
         ("f32", program.cpu::<f32>(n, &inputs, &["d", "w"])),
     ];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
-        runs.push(("GPU", program.gpu(&gpu, n, &inputs, &["d", "w"])));
+        runs.push(("GPU", program.gpu(gpu, n, &inputs, &["d", "w"])));
     }
     for (name, out) in &runs {
         let (d, w) = (&out[0], &out[1]);
@@ -438,7 +438,7 @@ fn cumulus_density_is_zero_outside_the_warped_balls_and_never_nan() {
 
 #[test]
 fn wyvills_cubic_is_flat_at_the_centre() {
-    // runtime/tests/stdlib_volume.rs tests F(0) = 1, F(R/2) = 1/2, F(R) = 0, F = 0 beyond R and the
+    // runtime/tests/stdlib/volume.rs tests F(0) = 1, F(R/2) = 1/2, F(R) = 0, F = 0 beyond R and the
     // zero slope at R; this is the remaining identity, F'(0) = 0, with the exact curvature: near 0,
     // F(r) = 1 - (22/9) (r/R)^2 + (17/9) (r/R)^4 - ..., so (1 - F(e)) / (e/R)^2 -> 22/9.
     let program = support::program(

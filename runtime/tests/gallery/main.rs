@@ -43,7 +43,7 @@ const SCENES: &[&str] = &[
     "shadowed_teapot",
 ];
 
-/// The other example scenes: the renderer's own examples, tested in `runtime/tests/render.rs`.
+/// The other example scenes: the renderer's own examples, tested in `runtime/tests/renderer/render.rs`.
 const EXAMPLES: &[&str] = &["bricks", "plastic", "ripples", "shiny", "textured"];
 
 /// Every test source that renders scenes, to find the scenes each one names.
@@ -57,7 +57,7 @@ const TEST_SOURCES: &[&str] = &[
     include_str!("soft_sphere.rs"),
     include_str!("solid.rs"),
     include_str!("stanford.rs"),
-    include_str!("../render.rs"),
+    include_str!("../renderer/render.rs"),
 ];
 
 #[test]

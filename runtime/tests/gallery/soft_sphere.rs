@@ -240,7 +240,7 @@ fn soft_sphere_grazing_and_central_rays_are_finite_and_exact() {
         ("f32", program.cpu::<f32>(n, &inputs, &["Ci", "Oi"])),
     ];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
-        runs.push(("GPU", program.gpu(&gpu, n, &inputs, &["Ci", "Oi"])));
+        runs.push(("GPU", program.gpu(gpu, n, &inputs, &["Ci", "Oi"])));
     }
     for (name, out) in &runs {
         support::assert_finite(&format!("{name} Ci"), &out[0], 3);
@@ -440,7 +440,7 @@ fn fireball_density_stays_in_the_unit_interval_along_the_march() {
         ("f32", program.cpu::<f32>(n, &inputs, &["density"])),
     ];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
-        runs.push(("GPU", program.gpu(&gpu, n, &inputs, &["density"])));
+        runs.push(("GPU", program.gpu(gpu, n, &inputs, &["density"])));
     }
     for (name, out) in &runs {
         support::assert_finite(name, &out[0], 1);

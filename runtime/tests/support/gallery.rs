@@ -46,14 +46,14 @@ pub fn both(label: &str, scene: &Scene, t: Thresholds) -> Option<Renders> {
     let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_finite(&format!("{label} (CPU)"), &cpu);
     let gpu =
-        render::render(&prepared, Backend::Gpu, Some(&device)).unwrap_or_else(|e| panic!("{label}: {e}"));
+        render::render(&prepared, Backend::Gpu, Some(device)).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_finite(&format!("{label} (GPU)"), &gpu);
     let comparison = compare(&cpu, &gpu, &t).unwrap();
     assert!(comparison.passes(&t), "{label}: GPU and CPU images differ: {comparison:?}");
     let options = render::Options { lowering: Lowering::Fast, ..render::Options::default() };
     let fast = render::prepare_with(scene, options).unwrap_or_else(|e| panic!("{label} (fast): {e}"));
     let fast =
-        render::render(&fast, Backend::Gpu, Some(&device)).unwrap_or_else(|e| panic!("{label} (fast): {e}"));
+        render::render(&fast, Backend::Gpu, Some(device)).unwrap_or_else(|e| panic!("{label} (fast): {e}"));
     assert_finite(&format!("{label} (GPU, fast lowering)"), &fast);
     let fast_comparison = compare(&cpu, &fast, &t).unwrap();
     assert!(

@@ -7,7 +7,7 @@
 //! Integer and boolean tables, and float tables of at least [`SHARED_FLOAT_TABLE`] elements. With
 //! a short float table whose values the driver can see, lavapipe's LLVM folds the arithmetic on
 //! them differently from the interpreter (1 ulp in a spline over constant knots, found by
-//! runtime/tests/stdlib_shaping_gpu.rs), and the backends promise the same bits; integer
+//! runtime/tests/stdlib/shaping_gpu.rs), and the backends promise the same bits; integer
 //! operations are exact whatever is folded. A long float table is a gradient table read at a
 //! hashed index (Perlin's 1985 noise: 768 floats), which nothing can fold, and composing it at
 //! every call is what the driver cannot afford: one `perlin_noise3` took lavapipe 3.2 s to

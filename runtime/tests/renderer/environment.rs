@@ -115,7 +115,7 @@ fn check(cases: &[Case]) -> (f64, f64) {
     let mut worst = (0.0f64, 0.0f64);
     for (label, map, d, form, expected) in cases {
         let mut backends = vec![(Backend::Cpu, None)];
-        if let Some(g) = gpu.as_ref() {
+        if let Some(g) = gpu {
             backends.push((Backend::Gpu, Some(g)));
         }
         for (backend, g) in backends {
@@ -191,7 +191,7 @@ fn a_zero_direction_reads_the_lat_long_centre_and_bad_names_are_one_error() {
         assert!((f64::from(cpu[k]) - mean[k]).abs() < 1e-3, "{cpu:?} vs {mean:?}");
     }
     if let Some(g) = patina_runtime::gpu::for_tests() {
-        let gpu = probe("sky:16", [0.0; 3], 0, Backend::Gpu, Some(&g));
+        let gpu = probe("sky:16", [0.0; 3], 0, Backend::Gpu, Some(g));
         assert!((0..3).all(|k| (gpu[k] - cpu[k]).abs() < 1e-4), "{gpu:?} vs {cpu:?}");
     }
     for bad in ["cube:a.png", "sky:0", "missing.hdr"] {
@@ -259,7 +259,7 @@ fn a_wide_footprint_reads_the_mip_chain_trilinearly() {
         let scene = probe_scene_spread("sky:16", d, 2, spread);
         let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{e}"));
         let mut backends = vec![(Backend::Cpu, None)];
-        if let Some(g) = gpu.as_ref() {
+        if let Some(g) = gpu {
             backends.push((Backend::Gpu, Some(g)));
         }
         for (backend, g) in backends {
@@ -310,7 +310,7 @@ fn cube_block_mean(face: u32, i: u32, j: u32, n: u32) -> [f64; 3] {
 fn a_wide_footprint_reads_a_cube_maps_chain() {
     let gpu = patina_runtime::gpu::for_tests();
     let mut backends = vec![(Backend::Cpu, None)];
-    if let Some(g) = gpu.as_ref() {
+    if let Some(g) = gpu {
         backends.push((Backend::Gpu, Some(g)));
     }
     // +X, which the horizon crosses: the centre of level 2's texel (1, 2), a 4 × 4 face there, the

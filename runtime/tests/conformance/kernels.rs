@@ -9,19 +9,15 @@
 //! uniform registers once per batch and varying ones per lane, and both paths must agree with
 //! the GPU. Many cases go into one shader so a test compiles one kernel. Predefined varying
 //! variables (`s`, `t`, `P`, `N`, `I`, `Cs`) are covered by their own test. The case lists and
-//! the tolerance table live in `conformance/cases.rs`, shared with `conformance_render.rs`, which
+//! the tolerance table live in `conformance/cases.rs`, shared with `conformance/render.rs`, which
 //! runs the same cases through the real vertex -> fragment path.
 //!
 //! The tests need a GPU adapter (lavapipe is enough) and panic without one, unless
 //! `PATINA_GPU=off`.
 
-#[path = "conformance/cases.rs"]
-mod cases;
-#[path = "conformance/harness.rs"]
-mod harness;
-
-use cases::{Case, Dom, R2, UNIT, declare, mixes, sample, tol};
-use harness::{Input, Spec, Tol};
+use crate::cases::{Case, Dom, R2, UNIT, declare, mixes, sample, tol};
+use crate::harness::{Input, Spec, Tol};
+use crate::{cases, harness};
 use patina_compiler::backend::cpu::LightBinding;
 use patina_compiler::backend::wgsl::Lowering;
 use patina_runtime::gpu::{self, Gpu};
@@ -134,7 +130,7 @@ fn run_lowered(cases: &[Case], lights: &[LightBinding], lowering: Lowering) {
         };
         sample(dom, input)
     };
-    harness::run(&gpu, &spec, &values);
+    harness::run(gpu, &spec, &values);
 }
 
 /// Runs a hand-written shader whose outputs are named in `outputs`.
@@ -310,7 +306,7 @@ fn predefined_varying_inputs() {
         ("e", tol::MIN_MAX),
         ("f", tol::MIN_MAX),
     ];
-    run_shader(&gpu, src, &[], &outputs);
+    run_shader(gpu, src, &[], &outputs);
 }
 
 #[test]
@@ -322,7 +318,7 @@ fn random_hashes_the_point_index_on_both() {
             o = random();
             c = random() * 0.5 + color random();
         }";
-    run_shader(&gpu, src, &[], &[("o", tol::EXACT), ("c", tol::EXACT)]);
+    run_shader(gpu, src, &[], &[("o", tol::EXACT), ("c", tol::EXACT)]);
 }
 
 #[test]
@@ -339,7 +335,7 @@ fn stanford_shader_with_lights() {
             return {integrate(c) + clamp01(x) + y, dot(q, q) + length(x)};
         }";
     let lights = vec![LightBinding::default(), LightBinding::default()];
-    run_shader(&gpu, src, &lights, &[("result", tol::REASSOCIATED)]);
+    run_shader(gpu, src, &lights, &[("result", tol::REASSOCIATED)]);
 }
 
 /// The real vertex -> fragment path for the built-ins a kernel cannot run: named coordinate
@@ -381,7 +377,7 @@ fn render_path_named_spaces_and_composites() {
     let scene = Scene::parse(scene, dir.join("s.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
     let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{e}"));
     let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{e}"));
-    let gpu = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{e}"));
+    let gpu = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{e}"));
     let t = Thresholds { fail: 1e-4, hard_fail: 1e-3, max_failing_fraction: 0.01 };
     let c = compare(&cpu, &gpu, &t).unwrap();
     assert!(c.passes(&t), "GPU and CPU images differ: {c:?}");
@@ -403,7 +399,7 @@ fn integer_division_by_a_literal_zero() {
             b = float(i % 0) + float((i + 5) % 0) + float(n % 0u);
             c = float(n / 0u) + float(i / -0);
         }";
-    run_shader(&gpu, src, &[], &[("a", tol::EXACT), ("b", tol::EXACT), ("c", tol::EXACT)]);
+    run_shader(gpu, src, &[], &[("a", tol::EXACT), ("b", tol::EXACT), ("c", tol::EXACT)]);
 }
 
 #[test]
@@ -418,5 +414,5 @@ fn nested_integrate_on_both() {
             return {integrate(integrate(a) * b), uv[1]};
         }";
     let lights = vec![LightBinding::default(), LightBinding::default(), LightBinding::default()];
-    run_shader(&gpu, src, &lights, &[("result", tol::REASSOCIATED)]);
+    run_shader(gpu, src, &lights, &[("result", tol::REASSOCIATED)]);
 }

@@ -17,7 +17,7 @@
 //!   the interpreter: bit-identical for colortable and the colour spaces, within 1e-6 for
 //!   filteredcolortable (measured 1.8e-7: lavapipe may reassociate its weighted sum).
 
-mod support;
+use crate::support;
 
 use patina_compiler::backend::cpu::scalar::Real;
 
@@ -268,7 +268,7 @@ fn colour_table_limits_extremes_and_the_gpu() {
     let mut all = sweep.clone();
     all.extend(table_points(6, 43));
     let cpu = run::<f32>(&program, &all);
-    let got = run_gpu(&gpu, &program, &all);
+    let got = run_gpu(gpu, &program, &all);
     for k in 0..2 {
         support::assert_finite("colour table (GPU)", &got[k], 3);
         let (d, at) = support::worst(&got[k], &cpu[k]);
@@ -554,7 +554,7 @@ fn mip_colour_table_extremes_and_the_gpu() {
     let mut all = sweep.clone();
     all.extend(mip_points(64, 91));
     let cpu = run::<f32>(&program, &all);
-    let got = run_gpu(&gpu, &program, &all);
+    let got = run_gpu(gpu, &program, &all);
     support::assert_finite("mipcolortable (GPU)", &got[0], 3);
     let (d, at) = support::worst(&got[0], &cpu[0]);
     println!("mipcolortable: GPU vs interpreter largest difference {d:e} over {} points", all.len());

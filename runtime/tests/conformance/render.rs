@@ -46,19 +46,15 @@
 //! `PATINA_GPU=off`. `PATINA_CONFORMANCE_REPORT=1` prints each output's largest difference and
 //! the time each step took.
 
-#[path = "conformance/cases.rs"]
-mod cases;
 // The compute runner is not used here, only `Tol` and its comparison.
 #[allow(dead_code)]
-#[path = "conformance/harness.rs"]
-mod harness;
-
+use crate::{cases, harness};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use cases::{Case, Dom, declare, mixes};
-use harness::Tol;
+use crate::cases::{Case, Dom, declare, mixes};
+use crate::harness::Tol;
 use patina_compiler::backend::cpu::LightBinding;
 use patina_runtime::gpu::{self, Gpu};
 use patina_runtime::image::Image;
@@ -625,7 +621,7 @@ fn run_group(group: &str, cases: Vec<Case>, lights: &[LightBinding], tolerance: 
         let layout = layout(chunk, tolerance);
         outputs += layout.outputs.len();
         let name = format!("{group}{k}");
-        let (n, f) = run_shader(&gpu, &name, &layout, lights);
+        let (n, f) = run_shader(gpu, &name, &layout, lights);
         compared += n;
         failures.extend(f);
     }
@@ -654,7 +650,7 @@ fn cells_come_from_the_interpolated_surface() {
     let src =
         format!("surface cells() {{ Ci = color(s, t, floor(t * {SIDE}) * {SIDE} + floor(s * {SIDE})); }}\n");
     let dir = TempDir::new("cells", &src);
-    let (_, cpu, gpu_image) = render_both(&gpu, &dir.0, &(scene_head() + &scene_object("")));
+    let (_, cpu, gpu_image) = render_both(gpu, &dir.0, &(scene_head() + &scene_object("")));
     let mut worst = 0;
     for (p, (c, g)) in cpu.pixels.iter().zip(&gpu_image.pixels).enumerate() {
         let (x, y) = ((p as u32 % SIDE) as f32, (p as u32 / SIDE) as f32);

@@ -6,9 +6,9 @@
 //!
 //! Run with `--nocapture` to see the measured numbers (they are quoted in docs/stdlib/cellular.md).
 
-mod support;
+use crate::support;
 
-use support::{Rng, assert_finite, extremes, worst};
+use crate::support::{Rng, assert_finite, extremes, worst};
 
 mod port {
     pub use super::support::lattice_hash::{cell, hash, unit};
@@ -158,7 +158,7 @@ fn cellnoise_matches_the_definition_on_both_backends_bit_for_bit() {
         assert!(e.iter().all(|v| (0.0..1.0).contains(v)));
     }
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let g = cellnoise_rows(&program.gpu(&gpu, inputs.len(), &named, &["Ci", "Oi"]));
+    let g = cellnoise_rows(&program.gpu(gpu, inputs.len(), &named, &["Ci", "Oi"]));
     for (i, e) in expected.iter().enumerate() {
         assert_eq!(&g[i], e, "GPU cellnoise at {:?}", inputs[i]);
     }

@@ -272,7 +272,7 @@ fn render_textured(gpu: &Gpu, texture: TextureData, fragment_entry: &str) -> Ima
 #[test]
 fn nearest_sampling_returns_the_texels() {
     let Some(gpu) = gpu::for_tests() else { return };
-    let image = render_textured(&gpu, texture_4x4(false), "fs");
+    let image = render_textured(gpu, texture_4x4(false), "fs");
     for y in 0..4 {
         for x in 0..4 {
             assert_eq!(image.get(x, y), Some(texel(x, y)), "pixel ({x}, {y})");
@@ -283,7 +283,7 @@ fn nearest_sampling_returns_the_texels() {
 #[test]
 fn mip_level_one_is_the_box_filtered_texels() {
     let Some(gpu) = gpu::for_tests() else { return };
-    let image = render_textured(&gpu, texture_4x4(true), "fs_level1");
+    let image = render_textured(gpu, texture_4x4(true), "fs_level1");
     for y in 0..4 {
         for x in 0..4 {
             let (bx, by) = (x / 2 * 2, y / 2 * 2);

@@ -17,7 +17,7 @@
 //!   finite results in f64, f32 and on the GPU;
 //! - the GPU (WGSL compute kernel on lavapipe) against the interpreter's f32 mode.
 
-mod support;
+use crate::support;
 
 /// Perlin's ImprovedNoise.java in f64, with the stdlib's reduction of the cell modulo 256 in
 /// float (so that the period holds beyond the range of `int`).
@@ -907,7 +907,7 @@ fn filtered_value_is_continuous_in_a_zoom() {
         ("f32", program.cpu::<f32>(n, &inputs, &["f"]).remove(0)),
     ];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
-        runs.push(("gpu", program.gpu(&gpu, n, &inputs, &["f"]).remove(0)));
+        runs.push(("gpu", program.gpu(gpu, n, &inputs, &["f"]).remove(0)));
     }
     for (what, f) in runs {
         let jump = (0..points)
@@ -1067,7 +1067,7 @@ fn gpu_matches_the_interpreter() {
     let cpu = eval::<f32>(&program, &args);
     // One kernel for both checks: it is large (four presets besides the general function), and
     // lavapipe's compilation of it is most of this test's time.
-    let out = eval_gpu(&program, &gpu, &args);
+    let out = eval_gpu(&program, gpu, &args);
     assert_all_finite("gpu", &args, &out);
     let mut worst = [0.0f64; 9];
     let mut identical = 0;

@@ -58,7 +58,7 @@ fn prepared(scene: &Scene, specialize: bool) -> Prepared {
 fn images(p: &Prepared) -> Vec<Image> {
     let mut out = vec![render::render(p, Backend::Cpu, None).unwrap()];
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
-        out.push(render::render(p, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{e}")));
+        out.push(render::render(p, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{e}")));
     }
     out
 }
@@ -208,7 +208,7 @@ fn the_cache_recompiles_nothing_for_new_animated_values() {
     assert_eq!((cache.hits, cache.misses), (3, 3), "the light is found, the surface compiled");
 }
 
-#[path = "../benches/support/features.rs"]
+#[path = "../../benches/support/features.rs"]
 mod features;
 
 #[test]

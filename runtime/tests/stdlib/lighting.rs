@@ -5,14 +5,14 @@
 //! closed-form values of the hair model, the extreme-input sweep, the standard light and surface
 //! shaders, and a scene that uses them rendered by both renderers.
 
-mod support;
+use crate::support;
 
+use crate::support::{Rng, assert_finite, extremes, worst};
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding};
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
-use support::{Rng, assert_finite, extremes, worst};
 
 /// A checked shader with its lights, ready for both backends.
 struct Lit {
@@ -278,7 +278,7 @@ fn rm_light_sums_match_the_ri_formulas() {
         eprintln!("f32 {} vs the port: {e:e}", outputs[k]);
     }
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let g = program.gpu(&gpu, count, &inputs, &outputs);
+    let g = program.gpu(gpu, count, &inputs, &outputs);
     for k in 0..outputs.len() {
         let e = close(&format!("gpu {}", outputs[k]), &g[k], &f32_out[k], GPU_REL);
         eprintln!("gpu {} vs f32: {e:e} (absolute {:e})", outputs[k], worst(&g[k], &f32_out[k]).0);
@@ -361,7 +361,7 @@ fn hair_terms_match_kajiya_kay_and_heidrich_seidel() {
         assert!(*w <= 1e-4, "f32 {}: {w:e}", HAIR_OUTPUTS[k]);
     }
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let g = program.gpu(&gpu, count, &inputs, &HAIR_OUTPUTS);
+    let g = program.gpu(gpu, count, &inputs, &HAIR_OUTPUTS);
     for k in 0..6 {
         let e = close(&format!("gpu {}", HAIR_OUTPUTS[k]), &g[k], &f32_out[k], GPU_REL);
         eprintln!("gpu {} vs f32: {e:e}", HAIR_OUTPUTS[k]);
@@ -505,7 +505,7 @@ fn hair_sums_over_the_lights_match_the_port() {
     }
     let f32_out = program.cpu::<f32>(count, &inputs, &outputs);
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let g = program.gpu(&gpu, count, &inputs, &outputs);
+    let g = program.gpu(gpu, count, &inputs, &outputs);
     for k in 0..3 {
         let e = close(&format!("gpu {}", outputs[k]), &g[k], &f32_out[k], GPU_REL);
         eprintln!("gpu {} vs f32: {e:e}", outputs[k]);
@@ -597,7 +597,7 @@ fn extreme_inputs_give_finite_results_on_both_backends() {
         assert_finite(&format!("f64 {name}"), &f64_out[k], width);
     }
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let g = program.gpu(&gpu, count, &inputs, &SWEEP_OUTPUTS);
+    let g = program.gpu(gpu, count, &inputs, &SWEEP_OUTPUTS);
     for (k, name) in SWEEP_OUTPUTS.iter().enumerate() {
         let width = if k < 7 { 3 } else { 1 };
         assert_finite(&format!("gpu {name}"), &g[k], width);
@@ -638,7 +638,7 @@ fn run_light(name: &str, count: usize, inputs: &support::Columns) -> [Option<Vec
     let f64_out = program.cpu_with::<f64>(count, &uniforms, &ps, &outputs);
     let f32_out = program.cpu_with::<f32>(count, &uniforms, &ps, &outputs);
     let g =
-        patina_runtime::gpu::for_tests().map(|gpu| program.gpu_with(&gpu, count, &uniforms, &ps, &outputs));
+        patina_runtime::gpu::for_tests().map(|gpu| program.gpu_with(gpu, count, &uniforms, &ps, &outputs));
     [Some(f64_out), Some(f32_out), g]
 }
 
@@ -836,7 +836,7 @@ fn swatch_scenes_with_the_standard_shaders_render_alike() {
         scene.output.height = 48;
         let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
         let cpu = render::render(&prepared, Backend::Cpu, None).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let g = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let g = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{name}: {e}"));
         let t = Thresholds::default();
         let c = compare(&cpu, &g, &t).unwrap();
         assert!(c.passes(&t), "{name}: GPU and CPU images differ: {c:?}");

@@ -5,9 +5,9 @@
 //!
 //! Run with `--nocapture` to see the measured numbers (they are quoted in docs/stdlib/lattice.md).
 
-mod support;
+use crate::support;
 
-use support::{Rng, assert_finite, extremes, worst};
+use crate::support::{Rng, assert_finite, extremes, worst};
 
 /// The definitions, in f64, written from the sources (not from lattice.sl).
 mod port {
@@ -319,7 +319,7 @@ fn hash_matches_the_pcg_definition_on_both_backends_bit_for_bit() {
         assert_eq!(&f32_rows[i], e, "f32 hash of {:?}", inputs[i]);
     }
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let gpu_rows = hash_rows(&program.gpu(&gpu, inputs.len(), &cols, &outputs));
+    let gpu_rows = hash_rows(&program.gpu(gpu, inputs.len(), &cols, &outputs));
     for (i, e) in expected.iter().enumerate() {
         assert_eq!(&gpu_rows[i], e, "GPU hash of {:?}", inputs[i]);
     }
@@ -624,6 +624,6 @@ fn catmull_rom_filter_matches_its_formula_and_is_bit_identical_on_the_gpu() {
     println!("catrom2: f64 vs formula {d64:.2e}, f32 vs formula {d32:.2e}");
     assert!(d64 < 1e-14 && d32 < 1e-6);
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let (dg, at) = worst(&eval_gpu(&gpu, &program, &points), &r32);
+    let (dg, at) = worst(&eval_gpu(gpu, &program, &points), &r32);
     assert_eq!(dg, 0.0, "GPU differs at d2 = {}", points[at][0]);
 }

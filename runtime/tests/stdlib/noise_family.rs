@@ -7,9 +7,9 @@
 //!
 //! Run with `--nocapture` to see the measured numbers (quoted in docs/stdlib/noise.md).
 
-mod support;
+use crate::support;
 
-use support::{Rng, assert_finite, extremes, worst};
+use crate::support::{Rng, assert_finite, extremes, worst};
 
 /// The definitions, in f64, written from the sources and the documented decisions.
 mod port {
@@ -485,7 +485,7 @@ fn ordinary(seed: u64, n: usize) -> Vec<In> {
 
 #[test]
 fn gradient_table_is_the_documented_procedure() {
-    let source = include_str!("../../compiler/stdlib/noise.sl");
+    let source = include_str!("../../../compiler/stdlib/noise.sl");
     let start = source.find("perlin_g[768] = {").expect("the table") + "perlin_g[768] = {".len();
     let end = start + source[start..].find("};").expect("its end");
     let values: Vec<f64> = source[start..end]
@@ -980,7 +980,7 @@ fn gpu_agrees_with_the_interpreter() {
         let start = std::time::Instant::now();
         let prog = shader("", &[expr]);
         let cpu: Vec<f64> = run(&prog, Backend::F32, &ins).iter().map(|o| o[0]).collect();
-        let dev: Vec<f64> = run(&prog, Backend::Gpu(&gpu), &ins).iter().map(|o| o[0]).collect();
+        let dev: Vec<f64> = run(&prog, Backend::Gpu(gpu), &ins).iter().map(|o| o[0]).collect();
         assert_finite(name, &dev, 1);
         let (err, at) = worst(&dev, &cpu);
         let same = dev.iter().zip(&cpu).filter(|(a, b)| a == b).count();

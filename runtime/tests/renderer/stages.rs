@@ -23,7 +23,7 @@ fn render_both(name: &str, shader: &str, params: &str) -> Option<(Image, Image)>
     let scene = Scene::parse(&scene, dir.join("s.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
     let prepared = render::prepare(&scene).unwrap_or_else(|e| panic!("{e}"));
     let cpu = render::render(&prepared, Backend::Cpu, None).unwrap();
-    let gpu = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap();
+    let gpu = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap();
     Some((cpu, gpu))
 }
 

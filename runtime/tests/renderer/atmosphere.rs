@@ -18,7 +18,7 @@ fn render_both(label: &str, scene: &Scene) -> Image {
     assert!(cpu.pixels.iter().flatten().all(|x| x.is_finite()), "{label}: not finite");
     if let Some(gpu) = patina_runtime::gpu::for_tests() {
         let image =
-            render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
+            render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{label}: {e}"));
         let t = Thresholds::default();
         let c = compare(&cpu, &image, &t).unwrap();
         assert!(c.passes(&t), "{label}: GPU and CPU images differ: {c:?}");

@@ -36,7 +36,7 @@ fn aqsis_shaders_check_render_and_agree() {
         dir.display()
     );
     let options = Options { include_dirs: vec![dir.join("include")], ..Options::default() };
-    let entries = corpus::run(&dir, &options, Some(&gpu), |_| {}).expect("the corpus directory reads");
+    let entries = corpus::run(&dir, &options, Some(gpu), |_| {}).expect("the corpus directory reads");
     assert_eq!(entries.len(), 47, "Aqsis's set has 47 shader files");
     let mut failures = Vec::new();
     for e in &entries {

@@ -1,7 +1,7 @@
 //! The shared harness of the standard-library tests (`support/`): inputs of different widths
 //! reach the same slots on both backends, and outputs come back in the order asked.
 
-mod support;
+use crate::support;
 
 #[test]
 fn both_backends_see_the_same_named_inputs() {
@@ -14,7 +14,7 @@ fn both_backends_see_the_same_named_inputs() {
     let cpu = program.cpu::<f64>(2, &inputs, &["Oi", "Ci"]);
     assert_eq!(cpu, [vec![2.0, 2.0, 2.0, -1.0, -1.0, -1.0], vec![21.0, 4.0, 3.0, -14.0, -0.5, 6.0]]);
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    assert_eq!(program.gpu(&gpu, 2, &inputs, &["Oi", "Ci"]), cpu);
+    assert_eq!(program.gpu(gpu, 2, &inputs, &["Oi", "Ci"]), cpu);
 }
 
 #[test]
@@ -30,7 +30,7 @@ fn parameters_not_given_take_their_defaults_and_pi_is_pi_on_both() {
     let pi = f64::from(std::f32::consts::PI);
     assert_eq!(cpu, [vec![2.0, 6.0, 7.0], vec![pi; 3]]);
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    assert_eq!(program.gpu(&gpu, 1, &inputs, &["Ci", "Oi"]), cpu);
+    assert_eq!(program.gpu(gpu, 1, &inputs, &["Ci", "Oi"]), cpu);
 }
 
 #[test]
@@ -47,5 +47,5 @@ fn open_length_array_parameters_take_the_arguments_length() {
     // Indices clamp to the array: x = 5 reads tab[3].
     assert_eq!(cpu[0], [31.0, 79.0, 0.0, 32.0, 78.0, 0.0, 34.0, 76.0, 0.0, 34.0, 74.0, 0.0]);
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    assert_eq!(program.gpu(&gpu, 4, &inputs, &["Ci"]), cpu);
+    assert_eq!(program.gpu(gpu, 4, &inputs, &["Ci"]), cpu);
 }

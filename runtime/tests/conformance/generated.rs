@@ -37,7 +37,7 @@
 //!   Discontinuous operations take exact operands only (see `generator.rs`), so no tolerance has to
 //!   absorb a branch or a `floor` that went the other way.
 //!
-//! **Case counts.** `cargo test -p patina-runtime --test generated` runs [`DEFAULT_CASES`]
+//! **Case counts.** `cargo test -p patina-runtime --test conformance generated::` runs [`DEFAULT_CASES`]
 //! programs; `PATINA_GENERATED_CASES=10000` (with `--release`) is the extended mode. The proptest
 //! seed is fixed ([`DEFAULT_SEED`], or `PATINA_GENERATED_SEED`), so a run is reproducible; a
 //! failure is shrunk and printed with the program's source. The test needs a GPU adapter (lavapipe
@@ -45,13 +45,12 @@
 
 #[path = "generated/generator.rs"]
 mod generator;
-#[allow(dead_code)]
-#[path = "conformance/harness.rs"]
-mod harness;
-mod support;
+
+use crate::harness;
 
 use std::cell::RefCell;
 
+use crate::support::Rng;
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, POINT_INDEX, SlotKind};
 use patina_compiler::backend::wgsl::{self, BoundLight, KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::ir::Shader;
@@ -61,7 +60,6 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::{self, Gpu};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestRunner};
-use support::Rng;
 
 /// Programs in a normal run (`cargo test`).
 const DEFAULT_CASES: u32 = 100;
@@ -350,7 +348,7 @@ fn generated_program_from_a_file() {
     let source = std::fs::read_to_string(&path).expect("the program file");
     let program = generator::Program::from_source(source);
     let mut totals = Totals::default();
-    let result = run(&gpu, &program, &mut totals);
+    let result = run(gpu, &program, &mut totals);
     eprintln!("{totals:?}");
     if let Err(e) = result {
         panic!("{e}");
@@ -378,7 +376,7 @@ fn generated_programs_compile_validate_and_agree() {
         if std::env::var_os("PATINA_GENERATED_SHOW").is_some() {
             eprintln!("{program:?}");
         }
-        run(&gpu, &program, &mut totals.borrow_mut()).map_err(TestCaseError::fail)
+        run(gpu, &program, &mut totals.borrow_mut()).map_err(TestCaseError::fail)
     });
     let t = totals.borrow();
     eprintln!(

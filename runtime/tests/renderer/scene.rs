@@ -439,7 +439,7 @@ fn compare_sets_the_scenes_thresholds_with_a_reason() {
 
 #[test]
 fn the_documented_example_is_a_valid_scene() {
-    let source = include_str!("../src/scene/mod.rs");
+    let source = include_str!("../../src/scene/mod.rs");
     let doc: Vec<&str> =
         source.lines().filter_map(|l| l.strip_prefix("//!")).map(|l| l.trim_start_matches(' ')).collect();
     let start = doc.iter().position(|l| *l == "```toml").unwrap() + 1;

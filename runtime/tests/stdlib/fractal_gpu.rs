@@ -4,7 +4,7 @@
 //! and the extremes (octaves 0 and 30, H 0 and 2, lacunarity 1 and 8, coordinates ±1e4, ±1e6,
 //! ±1e7, ±1e30 and denormals, width 0 and 1e30, offsets 0, ±1e4 and ±1e30).
 //!
-//! The noise is bit-exact between the two (runtime/tests/stdlib_noise_gpu.rs); what differs is
+//! The noise is bit-exact between the two (runtime/tests/stdlib/noise_gpu.rs); what differs is
 //! `pow` (lavapipe computes exp2(b log2 a) in f32, up to 89 ulp: shared/notes/naga-wgpu-facts.md
 //! §8) in the spectral weights, and `log` in fbm_filtered's octave count. A weight off by a few
 //! 1e-6 relative moves a sum of octaves (each at most 1) by a few 1e-6; the octave count's error
@@ -18,7 +18,7 @@ use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;
 
-mod support;
+use crate::support;
 
 const SHADER: &str = "#include <fractal.sl>\n\
     surface t(varying float H = 0.5, lac = 2, oct = 4, width = 0.01, offset = 1, gain = 2) {\n\
@@ -237,7 +237,7 @@ fn multiplicative_and_distorted_on_the_gpu_match_the_interpreter() {
         inputs.push((name, c));
     }
     let cpu = program.cpu::<f32>(n, &inputs, &["Ci", "Oi"]);
-    let out = program.gpu(&gpu, n, &inputs, &["Ci", "Oi"]);
+    let out = program.gpu(gpu, n, &inputs, &["Ci", "Oi"]);
     let funcs = ["multifractal", "hetero_terrain", "distnoise", "distfbm"];
     let mut worst = [0.0f64; 4];
     let mut identical = 0;

@@ -18,9 +18,9 @@
 //! - the stability sweep: every function over the extreme inputs, finite and in range on the
 //!   interpreter (f32, f64) and the GPU; the GPU against the f32 interpreter within `GPU_TOL`.
 
-mod support;
+use crate::support;
 
-use support::Rng;
+use crate::support::Rng;
 
 /// Rounds to f32 (every test input is f32-representable, so that the f32 and f64 runs and the
 /// references see the same arguments).

@@ -163,7 +163,7 @@ fn shaping_on_the_gpu_agrees_with_the_interpreter() {
 // f64 and f32 against independent ports written here, and on the GPU against the interpreter.
 // Measured numbers are printed with `--nocapture`.
 
-mod support;
+use crate::support;
 
 /// Peachey's C `spline` (T&M L1410-1440) in f64, with the span clamp corrected to nknots - 4
 /// (catalogue §1.3: as printed, x = 1 reads one knot past the end): Horner on the coefficients
@@ -252,7 +252,7 @@ fn spline_matches_peachey_for_float_and_colour_knots() {
         }
         if let Some(gpu) = patina_runtime::gpu::for_tests() {
             let cpu = program.cpu::<f32>(count, &inputs, &["Ci", "Oi"]);
-            let got = program.gpu(&gpu, count, &inputs, &["Ci", "Oi"]);
+            let got = program.gpu(gpu, count, &inputs, &["Ci", "Oi"]);
             for k in 0..2 {
                 let (d, at) = support::worst(&got[k], &cpu[k]);
                 assert!(d == 0.0, "spline with {n} knots: the GPU differs by {d:e} at x = {}", xs[at / 3]);
@@ -490,7 +490,7 @@ fn brick_limits_and_extremes() {
         let cols = brick_inputs(&sweep);
         let names = ["x", "y", "sw", "tw", "bw", "bh", "m"];
         let inputs: Vec<(&str, &[f64])> = names.iter().zip(&cols).map(|(n, c)| (*n, c.as_slice())).collect();
-        let got = program.gpu(&gpu, sweep.len(), &inputs, &["Ci"]);
+        let got = program.gpu(gpu, sweep.len(), &inputs, &["Ci"]);
         support::assert_finite("brick (GPU)", &got[0], 3);
         let (d, at) = support::worst(&got[0], &cpu32[0]);
         println!("brick sweep: GPU vs interpreter largest difference {d:e}");
@@ -526,7 +526,7 @@ fn sinesum_extremes_and_the_gpu() {
     support::assert_finite("sinesum (f32)", &cpu32[0], 3);
     support::assert_finite("sinesum (f64)", &program.cpu::<f64>(pts.len(), &inputs, &["Ci"])[0], 3);
     let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
-    let got = program.gpu(&gpu, pts.len(), &inputs, &["Ci"]);
+    let got = program.gpu(gpu, pts.len(), &inputs, &["Ci"]);
     support::assert_finite("sinesum (GPU)", &got[0], 3);
     // sin differs (lavapipe within ~1e-7 absolute on [-pi, pi]; the arguments are identical), so
     // the difference is at most that times sum(1 / f) < 2 / minfreq.

@@ -43,7 +43,7 @@ fn a_supersampled_target_over_the_texture_limit_is_an_error_naming_the_image() {
     let max = gpu.limits().max_texture_dimension_2d;
     let width = max / 16 + 1;
     let prepared = render::prepare(&supersampled_scene(width)).unwrap_or_else(|e| panic!("{e}"));
-    let error = render::render(&prepared, Backend::Gpu, Some(&gpu)).expect_err("over the limit");
+    let error = render::render(&prepared, Backend::Gpu, Some(gpu)).expect_err("over the limit");
     let RenderError::Gpu(message) = &error else { panic!("{error:?}") };
     let target = width * 16;
     assert_eq!(
@@ -55,7 +55,7 @@ fn a_supersampled_target_over_the_texture_limit_is_an_error_naming_the_image() {
     );
     // One pixel narrower fits, and renders.
     let prepared = render::prepare(&supersampled_scene(max / 16)).unwrap_or_else(|e| panic!("{e}"));
-    let image = render::render(&prepared, Backend::Gpu, Some(&gpu)).unwrap_or_else(|e| panic!("{e}"));
+    let image = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!((image.width, image.height), (max / 16, 8));
 }
 
@@ -145,7 +145,7 @@ fn an_unbounded_loop_stops_at_the_cap_on_the_gpu_and_is_e0702_in_the_interpreter
     // On the GPU: the body runs MAX_LOOP_ITERATIONS times, from 1 and from 100, then the loop
     // is left; every invocation finishes.
     let start = std::time::Instant::now();
-    let out = run_kernel(&gpu, shader, &[], 2, &[("start", &[1.0, 100.0])], &["Ci"])
+    let out = run_kernel(gpu, shader, &[], 2, &[("start", &[1.0, 100.0])], &["Ci"])
         .unwrap_or_else(|e| panic!("{e}"));
     let cap = MAX_LOOP_ITERATIONS as f64;
     assert_eq!(out[0], [1.0 + cap, 1.0 + cap, 1.0 + cap, 100.0 + cap, 100.0 + cap, 100.0 + cap]);

@@ -264,7 +264,11 @@ fn pipelines_are_kept_per_device_and_reused_with_fresh_uniforms() {
     // Rendering again makes no new pipeline and draws the same picture; another value of a
     // parameter still reaches the shader (a kept pipeline gets the draw's own uniforms, or a
     // specialized module gets a pipeline of its own), and the GPU still agrees with the CPU.
-    let Some(gpu) = patina_runtime::gpu::for_tests() else { return };
+    if patina_runtime::gpu::for_tests().is_none() {
+        return;
+    }
+    // A device of its own: the shared one keeps the pipelines of every test in the process.
+    let gpu = &patina_runtime::gpu::Gpu::new().unwrap_or_else(|e| panic!("{e}"));
     let mut s = scene("soft_sphere", 24, 24);
     let prepared = render::prepare(&s).unwrap();
     let first = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap();

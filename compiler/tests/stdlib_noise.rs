@@ -1,6 +1,6 @@
 //! The standard library's noise core (`compiler/stdlib/noise.sl`) on the interpreter, against Perlin's
-//! reference implementation of improved noise (ImprovedNoise.java, 2002), ported to Rust in this
-//! file (module `reference`) independently of the stdlib's code.
+//! reference implementation of improved noise (ImprovedNoise.java, 2002), ported to Rust
+//! independently of the stdlib's code (`patina_test_support::perlin`).
 //!
 //! What is measured (run with `--nocapture` to see the numbers):
 //! - f64 mode: bit-identical to the reference for coordinates below 2^31 in magnitude;
@@ -16,82 +16,9 @@
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
-
-/// Perlin's ImprovedNoise.java, line for line, in f64. `(int)Math.floor(x)` is `floor() as i32`:
-/// both saturate at the ends of the `int` range and map NaN to 0.
-mod reference {
-    const PERMUTATION: [i32; 256] = [
-        151, 160, 137, 91, 90, 15, 131, 13, 201, 95, 96, 53, 194, 233, 7, 225, 140, 36, 103, 30, 69, 142, 8,
-        99, 37, 240, 21, 10, 23, 190, 6, 148, 247, 120, 234, 75, 0, 26, 197, 62, 94, 252, 219, 203, 117, 35,
-        11, 32, 57, 177, 33, 88, 237, 149, 56, 87, 174, 20, 125, 136, 171, 168, 68, 175, 74, 165, 71, 134,
-        139, 48, 27, 166, 77, 146, 158, 231, 83, 111, 229, 122, 60, 211, 133, 230, 220, 105, 92, 41, 55, 46,
-        245, 40, 244, 102, 143, 54, 65, 25, 63, 161, 1, 216, 80, 73, 209, 76, 132, 187, 208, 89, 18, 169,
-        200, 196, 135, 130, 116, 188, 159, 86, 164, 100, 109, 198, 173, 186, 3, 64, 52, 217, 226, 250, 124,
-        123, 5, 202, 38, 147, 118, 126, 255, 82, 85, 212, 207, 206, 59, 227, 47, 16, 58, 17, 182, 189, 28,
-        42, 223, 183, 170, 213, 119, 248, 152, 2, 44, 154, 163, 70, 221, 153, 101, 155, 167, 43, 172, 9, 129,
-        22, 39, 253, 19, 98, 108, 110, 79, 113, 224, 232, 178, 185, 112, 104, 218, 246, 97, 228, 251, 34,
-        242, 193, 238, 210, 144, 12, 191, 179, 162, 241, 81, 51, 145, 235, 249, 14, 239, 107, 49, 192, 214,
-        31, 181, 199, 106, 157, 184, 84, 204, 176, 115, 121, 50, 45, 127, 4, 150, 254, 138, 236, 205, 93,
-        222, 114, 67, 29, 24, 72, 243, 141, 128, 195, 78, 66, 215, 61, 156, 180,
-    ];
-
-    /// `p[]`: the permutation twice over (`p[256 + i] = p[i] = permutation[i]`).
-    fn p(i: i32) -> i32 {
-        PERMUTATION[i as usize % 256]
-    }
-
-    pub fn noise(mut x: f64, mut y: f64, mut z: f64) -> f64 {
-        let xi = (x.floor() as i32) & 255; // FIND UNIT CUBE THAT
-        let yi = (y.floor() as i32) & 255; // CONTAINS POINT.
-        let zi = (z.floor() as i32) & 255;
-        x -= x.floor(); // FIND RELATIVE X,Y,Z
-        y -= y.floor(); // OF POINT IN CUBE.
-        z -= z.floor();
-        let u = fade(x); // COMPUTE FADE CURVES
-        let v = fade(y); // FOR EACH OF X,Y,Z.
-        let w = fade(z);
-        let a = p(xi) + yi; // HASH COORDINATES OF
-        let aa = p(a) + zi; // THE 8 CUBE CORNERS,
-        let ab = p(a + 1) + zi;
-        let b = p(xi + 1) + yi;
-        let ba = p(b) + zi;
-        let bb = p(b + 1) + zi;
-        lerp(
-            w,
-            lerp(
-                v,
-                lerp(u, grad(p(aa), x, y, z), grad(p(ba), x - 1.0, y, z)),
-                lerp(u, grad(p(ab), x, y - 1.0, z), grad(p(bb), x - 1.0, y - 1.0, z)),
-            ),
-            lerp(
-                v,
-                lerp(u, grad(p(aa + 1), x, y, z - 1.0), grad(p(ba + 1), x - 1.0, y, z - 1.0)),
-                lerp(u, grad(p(ab + 1), x, y - 1.0, z - 1.0), grad(p(bb + 1), x - 1.0, y - 1.0, z - 1.0)),
-            ),
-        )
-    }
-
-    fn fade(t: f64) -> f64 {
-        t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
-    }
-
-    fn lerp(t: f64, a: f64, b: f64) -> f64 {
-        a + t * (b - a)
-    }
-
-    pub fn grad(hash: i32, x: f64, y: f64, z: f64) -> f64 {
-        let h = hash & 15; // CONVERT LO 4 BITS OF HASH CODE
-        let u = if h < 8 { x } else { y }; // INTO 12 GRADIENT DIRECTIONS.
-        let v = if h < 4 {
-            y
-        } else if h == 12 || h == 14 {
-            x
-        } else {
-            z
-        };
-        (if h & 1 == 0 { u } else { -u }) + (if h & 2 == 0 { v } else { -v })
-    }
-}
+use patina_test_support::Rng;
+/// Perlin's ImprovedNoise.java, ported independently of the stdlib's code.
+use patina_test_support::perlin as reference;
 
 /// The stdlib's scale from improved noise to RenderMan's signed range (`PATINA_SNOISE_SCALE`).
 const SNOISE_SCALE: f64 = 0.9649;
@@ -135,32 +62,6 @@ fn reference(p: [f64; 3]) -> f64 {
 /// The point as the f32 mode sees it.
 fn to_f32(p: [f64; 3]) -> [f64; 3] {
     p.map(|x| f64::from(x as f32))
-}
-
-/// splitmix64: deterministic pseudo-random numbers for sample points.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn point(&mut self, lo: f64, hi: f64) -> [f64; 3] {
-        [self.range(lo, hi), self.range(lo, hi), self.range(lo, hi)]
-    }
 }
 
 /// Sample points: the unit cube's neighbourhood, the whole period and beyond on both sides,

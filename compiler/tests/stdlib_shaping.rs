@@ -15,6 +15,7 @@
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
+use patina_test_support::Rng;
 
 /// Midpoint-rule samples per box.
 const N: usize = 10_000;
@@ -120,22 +121,6 @@ mod reference {
         let n = super::N;
         let d = w / n as f64;
         (0..n).map(|i| f(x - w / 2.0 + (i as f64 + 0.5) * d)).sum::<f64>() / n as f64
-    }
-}
-
-/// splitmix64: deterministic pseudo-random numbers.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
     }
 }
 

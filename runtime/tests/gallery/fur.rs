@@ -16,6 +16,7 @@ use crate::support;
 use patina_compiler::backend::cpu::{Binding, CpuProgram};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Image, Thresholds};
+use patina_test_support::Rng;
 use std::f64::consts::PI;
 use support::gallery::{assert_finite, at, both, covered, cpu, scene, set, shader_source};
 
@@ -41,25 +42,12 @@ fn unit(a: V3) -> V3 {
     scale(a, 1.0 / dot(a, a).sqrt())
 }
 
-/// A deterministic generator (SplitMix64) for directions.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A direction uniform on the unit sphere.
-    fn unit(&mut self) -> V3 {
-        let z = 2.0 * self.next() - 1.0;
-        let phi = 2.0 * PI * self.next();
-        let r = (1.0 - z * z).sqrt();
-        [r * phi.cos(), r * phi.sin(), z]
-    }
+/// A direction uniform on the unit sphere.
+fn direction(rng: &mut Rng) -> V3 {
+    let z = 2.0 * rng.unit() - 1.0;
+    let phi = 2.0 * PI * rng.unit();
+    let r = (1.0 - z * z).sqrt();
+    [r * phi.cos(), r * phi.sin(), z]
 }
 
 /// Flattens vectors into one input column.
@@ -88,10 +76,10 @@ fn diffuse_is_lambert_over_the_whole_circumference_with_kd_2_kd_r() {
     let count = 48;
     let (mut ts, mut ls, mut kds, mut want) = (vec![], vec![], vec![], vec![]);
     for i in 0..count {
-        let t = rng.unit();
+        let t = direction(&mut rng);
         // Every eighth light direction is (nearly) along the fibre, where the integral vanishes.
-        let l = if i % 8 == 0 { unit(add(t, scale(rng.unit(), 1e-3))) } else { rng.unit() };
-        let (kd, r) = (0.2 + rng.next(), 0.01 + 0.2 * rng.next());
+        let l = if i % 8 == 0 { unit(add(t, scale(direction(&mut rng), 1e-3))) } else { direction(&mut rng) };
+        let (kd, r) = (0.2 + rng.unit(), 0.01 + 0.2 * rng.unit());
         // The hair's normals n(phi) = u cos(phi) + w sin(phi) around the whole circumference, in a
         // basis of the normal plane that does not depend on l; a surface element r dphi reflects
         // kd max(0, l . n) (Lambert), so the lit half is where the clamp is positive.
@@ -135,10 +123,10 @@ fn the_highlight_is_where_the_fibre_is_perpendicular_to_l_minus_e() {
     let mut rng = Rng(5);
     let n = 720; // half-degree steps
     for case in 0..6 {
-        let (l, e) = (rng.unit(), rng.unit());
+        let (l, e) = (direction(&mut rng), direction(&mut rng));
         for mirror in [false, true] {
             let m = unit(if mirror { add(l, e) } else { add(l, scale(e, -1.0)) });
-            let w = unit(cross(m, rng.unit()));
+            let w = unit(cross(m, direction(&mut rng)));
             let ts: Vec<V3> = (0..n)
                 .map(|k| {
                     let b = 2.0 * PI * k as f64 / n as f64;

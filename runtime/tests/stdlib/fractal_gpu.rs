@@ -19,6 +19,7 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;
 
 use crate::support;
+use patina_test_support::Rng;
 
 const SHADER: &str = "#include <fractal.sl>\n\
     surface t(varying float H = 0.5, lac = 2, oct = 4, width = 0.01, offset = 1, gain = 2) {\n\
@@ -44,39 +45,22 @@ const INPUTS: [&str; 7] = ["P", "H", "lac", "oct", "width", "offset", "gain"];
 /// pow), 1.4e-6 (the multifractals); 79% of the values bit-identical.
 const GPU_TOL: f32 = 1e-5;
 
-/// splitmix64: deterministic pseudo-random numbers.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f32 {
-        (lo + (hi - lo) * self.unit()) as f32
-    }
-}
-
 /// Argument sets, 9 words each: P, H, lac, oct, width, offset, gain.
 fn args() -> Vec<[f32; 9]> {
     let mut rng = Rng(41);
     let mut args = Vec::new();
     for i in 0..2000 {
-        let lac = if i % 2 == 0 { 2.0 } else { rng.range(1.5, 3.0) };
+        let lac = if i % 2 == 0 { 2.0 } else { rng.range_f32(1.5, 3.0) };
         args.push([
-            rng.range(-50.0, 50.0),
-            rng.range(-50.0, 50.0),
-            rng.range(-50.0, 50.0),
-            rng.range(0.0, 1.5),
+            rng.range_f32(-50.0, 50.0),
+            rng.range_f32(-50.0, 50.0),
+            rng.range_f32(-50.0, 50.0),
+            rng.range_f32(0.0, 1.5),
             lac,
-            rng.range(0.0, 10.0),
-            10f64.powf(f64::from(rng.range(-4.0, 0.0))) as f32,
-            rng.range(0.5, 1.2),
-            rng.range(1.0, 3.0),
+            rng.range_f32(0.0, 10.0),
+            10f64.powf(f64::from(rng.range_f32(-4.0, 0.0))) as f32,
+            rng.range_f32(0.5, 1.2),
+            rng.range_f32(1.0, 3.0),
         ]);
     }
     let points = [
@@ -190,7 +174,7 @@ const GPU_TOL2_DISTORTED: f64 = 1e-4;
 fn multiplicative_and_distorted_on_the_gpu_match_the_interpreter() {
     let Some(gpu) = gpu::for_tests() else { return };
     let program = support::program(SHADER2);
-    let mut rng = support::Rng(43);
+    let mut rng = Rng(43);
     let mut rows: Vec<[f64; 8]> = Vec::new();
     for i in 0..1500 {
         let p = rng.point(-50.0, 50.0);

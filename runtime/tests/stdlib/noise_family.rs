@@ -13,7 +13,7 @@ use crate::support::{Rng, assert_finite, extremes, worst};
 
 /// The definitions, in f64, written from the sources and the documented decisions.
 mod port {
-    pub const PERM: [i32; 256] = super::support::PERLIN_PERMUTATION;
+    pub const PERM: [i32; 256] = patina_test_support::perlin::PERMUTATION;
     pub const SCALE3: f64 = 0.9649;
     pub const SCALE1: f64 = 0.25;
     pub const SCALE4: f64 = 0.74;

@@ -16,39 +16,19 @@ use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;
+use patina_test_support::Rng;
 
 const SHADER: &str = "#include <noise.sl>\n\
     surface t() { Ci = color(improved_noise(P), snoise3(P), noise3(P)); }\n";
-
-/// splitmix64: deterministic pseudo-random numbers for sample points.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn point(&mut self, lo: f64, hi: f64) -> [f32; 3] {
-        [self.range(lo, hi) as f32, self.range(lo, hi) as f32, self.range(lo, hi) as f32]
-    }
-}
 
 fn points() -> Vec<[f32; 3]> {
     let mut rng = Rng(29);
     let mut points = Vec::new();
     for _ in 0..1000 {
-        points.push(rng.point(-2.0, 2.0));
+        points.push(rng.point_f32(-2.0, 2.0));
     }
     for _ in 0..2000 {
-        points.push(rng.point(-600.0, 600.0));
+        points.push(rng.point_f32(-600.0, 600.0));
     }
     for _ in 0..500 {
         // Near the edges of the period (cells 255 and 0), from both sides.
@@ -56,7 +36,7 @@ fn points() -> Vec<[f32; 3]> {
         points.push([edge(), edge(), edge()]);
     }
     for _ in 0..200 {
-        points.push(rng.point(-1000.0, 1000.0).map(f32::floor));
+        points.push(rng.point_f32(-1000.0, 1000.0).map(f32::floor));
     }
     for k in 0..=24 {
         let offset = 2f64.powi(k);

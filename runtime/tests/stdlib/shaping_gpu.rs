@@ -18,6 +18,7 @@ use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;
+use patina_test_support::Rng;
 
 /// Tolerance for the functions that use pow and log: absolute below 1, relative above.
 const POW_TOL: f32 = 2e-5;
@@ -38,33 +39,22 @@ const FUNCTIONS: [(&str, bool); 12] = [
     ("filteredabs(u, v)", false),
 ];
 
-/// splitmix64: deterministic pseudo-random numbers.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f32 {
-        (lo + (hi - lo) * self.unit()) as f32
-    }
-}
-
 /// (s, t, u, v): s a parameter in [0, 1] (b, g, gamma, an edge), t > s (a pulse's end, a period),
 /// u the value x, v the filter width.
 fn points() -> Vec<[f32; 4]> {
     let mut rng = Rng(41);
     let mut points = Vec::new();
     for _ in 0..3000 {
-        let s = rng.range(0.0, 1.0);
-        points.push([s, s + rng.range(0.01, 2.0), rng.range(-0.2, 1.2), rng.range(0.0, 3.0)]);
+        let s = rng.range_f32(0.0, 1.0);
+        points.push([s, s + rng.range_f32(0.01, 2.0), rng.range_f32(-0.2, 1.2), rng.range_f32(0.0, 3.0)]);
     }
     for _ in 0..1000 {
-        points.push([rng.range(0.0, 1.0), rng.range(0.2, 3.0), rng.range(-20.0, 20.0), rng.range(0.0, 40.0)]);
+        points.push([
+            rng.range_f32(0.0, 1.0),
+            rng.range_f32(0.2, 3.0),
+            rng.range_f32(-20.0, 20.0),
+            rng.range_f32(0.0, 40.0),
+        ]);
     }
     let params = [(0.0, 1.0), (1.0, 2.0), (0.5, 0.5), (0.25, 1.0)];
     let xs = [0.0, 0.25, 0.5, 1.0, -1.0, 1e6, -1e6];
@@ -192,14 +182,14 @@ fn spline_params(spans: usize) -> Vec<f64> {
     let mut xs = support::extremes();
     xs.extend([-2.0, 2.0, 0.25, 0.75]);
     xs.extend((0..=spans).map(|k| k as f64 / spans as f64));
-    let mut rng = support::Rng(3);
+    let mut rng = Rng(3);
     xs.extend((0..200).map(|_| rng.unit()));
     xs
 }
 
 #[test]
 fn spline_matches_peachey_for_float_and_colour_knots() {
-    let mut rng = support::Rng(5);
+    let mut rng = Rng(5);
     for n in [4usize, 5, 7, 10, 16, 33] {
         let knots: Vec<f64> = (0..n).map(|_| f64::from(rng.range(-2.0, 2.0) as f32)).collect();
         let listed = knots.iter().map(|&k| lit(k)).collect::<Vec<_>>().join(", ");
@@ -285,7 +275,7 @@ const SINESUM: &str = "#include <pattern.sl>\n\
 #[test]
 fn sinesum_matches_its_definition_and_fades_terms_above_nyquist() {
     let program = support::program(SINESUM);
-    let mut rng = support::Rng(9);
+    let mut rng = Rng(9);
     let mut pts: Vec<[f64; 4]> = Vec::new();
     for i in 0..1500 {
         let lo = [1.0, 0.5, 3.0, 0.1][i % 4];
@@ -380,7 +370,7 @@ fn brick_run<F: patina_compiler::backend::cpu::scalar::Real>(
 #[test]
 fn filtered_brick_is_the_box_mean_of_peachey_brick() {
     let program = support::program(BRICK);
-    let mut rng = support::Rng(13);
+    let mut rng = Rng(13);
     // (s, t, swidth, twidth, brickwidth, brickheight, mortar): boxes from a fraction of the
     // mortar to several bricks, so that boxes span rows and the row shift matters.
     let mut pts = Vec::new();
@@ -433,7 +423,7 @@ fn filtered_brick_is_the_box_mean_of_peachey_brick() {
 #[test]
 fn brick_limits_and_extremes() {
     let program = support::program(BRICK);
-    let mut rng = support::Rng(17);
+    let mut rng = Rng(17);
     // Unfiltered: Peachey's brick, away from the mortar edges (within rounding either side is
     // right); widths 0 give the same.
     let mut pts = Vec::new();
@@ -511,7 +501,7 @@ fn sinesum_extremes_and_the_gpu() {
             }
         }
     }
-    let mut rng = support::Rng(23);
+    let mut rng = Rng(23);
     for _ in 0..2000 {
         pts.push([
             rng.range(-100.0, 100.0),

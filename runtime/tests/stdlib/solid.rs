@@ -22,7 +22,7 @@ use crate::support;
 /// Perlin's ImprovedNoise.java in f64, with the stdlib's reduction of the cell modulo 256 in
 /// float (so that the period holds beyond the range of `int`).
 mod reference {
-    const PERMUTATION: [i32; 256] = super::support::PERLIN_PERMUTATION;
+    const PERMUTATION: [i32; 256] = patina_test_support::perlin::PERMUTATION;
 
     fn p(i: i32) -> i32 {
         PERMUTATION[i as usize % 256]

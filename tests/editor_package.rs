@@ -10,6 +10,7 @@
 //!   it needs the npm registry. Nothing is written into the source tree but `node_modules/`.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::Instant;
@@ -95,7 +96,10 @@ fn lexer_keywords() -> BTreeSet<String> {
         }
     }
     assert!(words.len() > 50, "only {} keywords found: token.rs's form changed", words.len());
-    assert!(text.contains(r#"#[regex(r"primitive[ \t\r\n]+group")]"#), "`primitive group` is no longer one token");
+    assert!(
+        text.contains(r#"#[regex(r"primitive[ \t\r\n]+group")]"#),
+        "`primitive group` is no longer one token"
+    );
     words
 }
 
@@ -126,7 +130,12 @@ fn grammar_keywords_are_the_lexers_in_the_documented_groups() {
         found.iter().flat_map(|(_, words)| words.iter().cloned()).collect()
     };
 
-    assert_lists("shader kinds", "shader-kinds", &listed(&grammar, "shader-kinds"), &group(&["shader kinds"]));
+    assert_lists(
+        "shader kinds",
+        "shader-kinds",
+        &listed(&grammar, "shader-kinds"),
+        &group(&["shader kinds"]),
+    );
     // `primitive group` is one token, highlighted by a pattern of its own.
     let mut qualifiers = group(&["qualifiers"]);
     assert!(qualifiers.remove("primitive group"), "`primitive group` is not a documented qualifier");
@@ -194,7 +203,12 @@ fn grammar_names_are_the_compilers_builtins_variables_and_stdlib() {
     assert_lists("built-in functions", "builtin-functions", &builtin_names, &expected);
 
     let variables: BTreeSet<String> = GLOBALS.iter().map(|g| g.name.to_owned()).collect();
-    assert_lists("predefined variables", "predefined-variables", &listed(&grammar, "predefined-variables"), &variables);
+    assert_lists(
+        "predefined variables",
+        "predefined-variables",
+        &listed(&grammar, "predefined-variables"),
+        &variables,
+    );
 
     // The functions each standard-library module defines (with what it includes), less the
     // library's private `_patina_` helpers and its shaders.
@@ -212,7 +226,12 @@ fn grammar_names_are_the_compilers_builtins_variables_and_stdlib() {
         }
     }
     assert!(stdlib.len() > 100, "only {} standard-library functions found", stdlib.len());
-    assert_lists("standard-library functions", "stdlib-functions", &listed(&grammar, "stdlib-functions"), &stdlib);
+    assert_lists(
+        "standard-library functions",
+        "stdlib-functions",
+        &listed(&grammar, "stdlib-functions"),
+        &stdlib,
+    );
 }
 
 /// The program `name` on PATH (`name.cmd` or `name.exe` too, on Windows).
@@ -280,10 +299,16 @@ fn editor_package_installs_tests_and_packages() {
     assert!(lock.contains("\"lockfileVersion\""), "editors/vscode/package-lock.json is not a lockfile");
 
     let Some(npm) = on_path("npm") else {
-        println!("editor_package: SKIPPED: `npm` is not on PATH, so the VS Code extension was not built or tested");
+        // Straight to stderr, past the test harness's capture, so that the skip shows in every run.
+        let _ = writeln!(
+            std::io::stderr(),
+            "editor_package: SKIPPED: `npm` is not on PATH, so the VS Code extension (editors/vscode) was not built or tested"
+        );
         return;
     };
-    let npx = npm.parent().map(|dir| dir.join(npm.file_name().unwrap_or_default().to_string_lossy().replace("npm", "npx")));
+    let npx = npm
+        .parent()
+        .map(|dir| dir.join(npm.file_name().unwrap_or_default().to_string_lossy().replace("npm", "npx")));
     let npx = npx.filter(|p| p.is_file()).or_else(|| on_path("npx")).expect("npm is on PATH but npx is not");
 
     let before = files(&package());
@@ -307,14 +332,20 @@ fn editor_package_installs_tests_and_packages() {
     assert_eq!(&bytes[..2], b"PK", "{} is not a zip file", vsix.display());
     // The package holds the grammar and the client (its listing names them in clear).
     let text = String::from_utf8_lossy(&bytes);
-    for member in ["extension/syntaxes/patina.tmLanguage.json", "extension/src/extension.js", "extension/package.json"] {
+    for member in
+        ["extension/syntaxes/patina.tmLanguage.json", "extension/src/extension.js", "extension/package.json"]
+    {
         assert!(text.contains(member), "{} lacks {member}", vsix.display());
     }
     assert!(bytes.len() < 2_000_000, "{} is {} bytes: check .vscodeignore", vsix.display(), bytes.len());
 
     let after = files(&package());
-    let changed: Vec<_> = before.keys().chain(after.keys()).filter(|p| before.get(*p) != after.get(*p)).collect();
-    assert!(changed.is_empty(), "building the extension changed editors/vscode outside node_modules: {changed:?}");
+    let changed: Vec<_> =
+        before.keys().chain(after.keys()).filter(|p| before.get(*p) != after.get(*p)).collect();
+    assert!(
+        changed.is_empty(),
+        "building the extension changed editors/vscode outside node_modules: {changed:?}"
+    );
     println!(
         "editor_package: npm ci, npm test and vsce package took {:.1} s; {} is {} bytes",
         started.elapsed().as_secs_f64(),

@@ -1,0 +1,45 @@
+//! Go to definition: a variable's declaration, a function's definitions (in the document, in a
+//! file it includes, or in the standard library's sources), and the file an `#include` reads.
+
+use lsp_types::{GotoDefinitionResponse, Location, Position, Uri};
+use patina_compiler::source::Span;
+
+use super::analysis::Analysis;
+use super::symbols::Referent;
+use super::{functions, position};
+
+/// Where the name at `at` is defined; `uri_of` names the compiler's files as URIs.
+pub fn definition(
+    analysis: &Analysis,
+    at: Position,
+    uri_of: &dyn Fn(&str) -> Option<Uri>,
+) -> Option<GotoDefinitionResponse> {
+    let offset = analysis.offset(at)?;
+    let sources = &analysis.checked.sources;
+    let location = |span: Span| -> Option<Location> {
+        let file = sources.file(span.file);
+        Some(Location { uri: uri_of(&file.name)?, range: position::range(file, span.range()) })
+    };
+    let spans: Vec<Span> = match analysis.symbols.at(analysis.checked.root, offset).map(|o| &o.referent) {
+        Some(Referent::Variable(declaration)) => vec![*declaration],
+        Some(Referent::Function(name)) => {
+            functions::named(&analysis.checked.module, name).iter().map(|f| f.name.span).collect()
+        }
+        // Built-ins and predefined variables are defined by the compiler, not in any file.
+        Some(Referent::Global(_) | Referent::Builtin(_)) => Vec::new(),
+        // An `#include` line: the file it read (its first inclusion from here).
+        None => sources
+            .files()
+            .find(|(_, f)| {
+                f.included_from.is_some_and(|s| analysis.is_root(s.file) && s.contains_offset(offset))
+            })
+            .map(|(id, _)| vec![Span::new(id, 0..0)])
+            .unwrap_or_default(),
+    };
+    let locations: Vec<Location> = spans.into_iter().filter_map(location).collect();
+    match locations.len() {
+        0 => None,
+        1 => locations.into_iter().next().map(GotoDefinitionResponse::Scalar),
+        _ => Some(GotoDefinitionResponse::Array(locations)),
+    }
+}

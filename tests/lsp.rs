@@ -69,6 +69,19 @@ fn hover_shows_the_rate_and_stage_of_a_variable_and_an_expression() {
     let (line, character) = position_of(RATES, "* 2", 0);
     let product = text(client.at("textDocument/hover", &doc, line, character));
     assert!(product.contains("float") && product.contains("rate:"), "{product}");
+    // While a statement is typed (no `;` yet, so the text does not parse), the last text that
+    // checked answers, its positions carried across the edit.
+    let typing = RATES.replace("    u = v;\n", "    float w = v *;\n");
+    client.change(&doc, 2, &typing);
+    let syntax = client.diagnostics(&doc, 2);
+    assert!(syntax[0]["code"].as_str().is_some_and(|c| c.starts_with("E03")), "{syntax:#?}");
+    let (line, character) = position_of(&typing, "color(v", 6);
+    let v = text(client.at("textDocument/hover", &doc, line, character));
+    assert!(v.contains("float v") && v.contains("rate: **fragment**"), "{v}");
+    let answer =
+        client.request("textDocument/semanticTokens/full", json!({ "textDocument": { "uri": doc } }));
+    let tokens = decode(&answer["result"]["data"]);
+    assert!(tokens.iter().any(|t| (t.0, t.1) == (line, character)), "{tokens:?}");
     assert!(client.shutdown().success());
 }
 

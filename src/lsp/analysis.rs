@@ -83,6 +83,14 @@ impl Analysis {
             .any(|(id, f)| id != self.checked.root && uri::normalize(Path::new(&f.name)) == path)
     }
 
+    /// Whether the semantic stage ran on this text: it does not on a text with syntax errors, and
+    /// then every shader of the tree is missing from the IR.
+    pub fn has_semantics(&self) -> bool {
+        use patina_compiler::syntax::ast::Item;
+        let has_shaders = self.checked.module.items.iter().any(|i| matches!(i, Item::Shader(_)));
+        !has_shaders || self.shaders().next().is_some()
+    }
+
     /// Whether `file` is the document (not a file it includes).
     pub fn is_root(&self, file: FileId) -> bool {
         file == self.checked.root

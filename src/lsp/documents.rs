@@ -20,6 +20,29 @@ pub struct Document {
     pub text: String,
     /// The analysis of this version of the text; `None` after a change, until it is checked again.
     pub analysis: Option<Analysis>,
+    /// The last analysis of an earlier text that went through the semantic stage, kept while the
+    /// current one has not (see `view.rs`).
+    pub earlier: Option<Analysis>,
+}
+
+impl Document {
+    /// Marks the analysis out of date, keeping it as the earlier one if it has semantic results.
+    pub fn invalidate(&mut self) {
+        if let Some(old) = self.analysis.take()
+            && old.has_semantics()
+        {
+            self.earlier = Some(old);
+        }
+    }
+
+    /// Records the analysis of the current text (the earlier one is dropped once this one has
+    /// semantic results of its own).
+    pub fn analysed(&mut self, analysis: Analysis) {
+        if analysis.has_semantics() {
+            self.earlier = None;
+        }
+        self.analysis = Some(analysis);
+    }
 }
 
 /// Every open document, by URI.
@@ -32,7 +55,7 @@ impl Documents {
     /// Opens (or reopens) a document.
     pub fn open(&mut self, uri: Uri, version: i32, text: String) {
         let name = uri::file_name(&uri);
-        self.by_uri.insert(uri, Document { name, version, text, analysis: None });
+        self.by_uri.insert(uri, Document { name, version, text, analysis: None, earlier: None });
     }
 
     /// Applies the editor's changes, in order; a change without a range replaces the whole text.
@@ -46,7 +69,7 @@ impl Documents {
             }
         }
         doc.version = version;
-        doc.analysis = None;
+        doc.invalidate();
         true
     }
 

@@ -22,6 +22,7 @@ mod session;
 mod symbols;
 mod transport;
 mod uri;
+mod view;
 
 use std::io::{self, BufRead, Write};
 use std::path::PathBuf;
@@ -161,26 +162,25 @@ fn answer(session: &mut Session, state: &mut State, request: Request) -> Respons
         }
         (State::Running, HoverRequest::METHOD) => handle::<HoverRequest>(id, params, |p| {
             let at = p.text_document_position_params;
-            session.with(&at.text_document.uri, |a, _| hover::hover(a, at.position)).flatten()
+            session.with(&at.text_document.uri, |view, _| view.hover(at.position)).flatten()
         }),
         (State::Running, GotoDefinition::METHOD) => handle::<GotoDefinition>(id, params, |p| {
             let at = p.text_document_position_params;
-            session
-                .with(&at.text_document.uri, |a, uri_of| definition::definition(a, at.position, uri_of))
-                .flatten()
+            let uri = &at.text_document.uri;
+            session.with(uri, |view, uri_of| view.definition(at.position, uri, uri_of)).flatten()
         }),
         (State::Running, Completion::METHOD) => handle::<Completion>(id, params, |p| {
             let at = p.text_document_position;
-            session.with(&at.text_document.uri, |a, _| completion::complete(a, at.position)).flatten()
+            session
+                .with(&at.text_document.uri, |view, _| completion::complete(view.now(), at.position))
+                .flatten()
         }),
         (State::Running, InlayHintRequest::METHOD) => handle::<InlayHintRequest>(id, params, |p| {
-            session.with(&p.text_document.uri, |a, _| inlay_hints::hints(a, p.range))
+            session.with(&p.text_document.uri, |view, _| view.hints(p.range))
         }),
         (State::Running, SemanticTokensFullRequest::METHOD) => {
             handle::<SemanticTokensFullRequest>(id, params, |p| {
-                session.with(&p.text_document.uri, |a, _| {
-                    SemanticTokensResult::Tokens(semantic_tokens::tokens(a))
-                })
+                session.with(&p.text_document.uri, |view, _| SemanticTokensResult::Tokens(view.tokens()))
             })
         }
         (State::Running, _) => {

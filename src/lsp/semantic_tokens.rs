@@ -2,11 +2,15 @@
 //! document, with a modifier for its rate, so that a theme can colour values by how often they
 //! are computed.
 
+use std::collections::HashSet;
+use std::ops::Range;
+
 use lsp_types::{
     SemanticToken, SemanticTokenModifier, SemanticTokenType, SemanticTokens, SemanticTokensLegend,
 };
 use patina_compiler::ir::LocalKind;
 use patina_compiler::ir::types::{Frequency, Rate};
+use patina_compiler::source::SourceFile;
 use patina_compiler::stdlib;
 
 use super::analysis::Analysis;
@@ -46,12 +50,30 @@ fn rate_bits(rate: Rate) -> u32 {
     (1 << frequency) | if rate.perlight { 1 << 6 } else { 0 }
 }
 
-/// The tokens of the whole document.
+/// One token: a byte range of the document, its type and its modifier bits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Token {
+    /// The name's bytes in the document.
+    pub range: Range<usize>,
+    /// The index of its type in [`TYPES`].
+    pub kind: u32,
+    /// Its modifier bits (see [`MODIFIERS`]).
+    pub modifiers: u32,
+}
+
+/// The tokens of the whole document, in order.
 pub fn tokens(analysis: &Analysis) -> SemanticTokens {
-    let root = analysis.root();
+    encode(analysis.root(), classify(analysis))
+}
+
+/// Every name of the document as a token, in order.
+pub fn classify(analysis: &Analysis) -> Vec<Token> {
     let sources = &analysis.checked.sources;
-    let mut data = Vec::new();
-    let (mut line, mut start, mut end_of_last) = (0u32, 0u32, 0u32);
+    let library: HashSet<&str> = super::functions::all(&analysis.checked.module)
+        .filter(|f| sources.file(f.span.file).name.starts_with(stdlib::PREFIX))
+        .map(|f| f.name.name.as_str())
+        .collect();
+    let mut out = Vec::new();
     // Names made by macros have no place of their own in the text.
     for name in analysis.symbols.in_file(analysis.checked.root).filter(|o| !o.span.expn.is_macro()) {
         let declaration = if name.declaration { DECLARATION } else { 0 };
@@ -68,30 +90,36 @@ pub fn tokens(analysis: &Analysis) -> SemanticTokens {
                 (VARIABLE, rate_bits(Rate { frequency: g.frequency, perlight: g.perlight }) | DEFAULT_LIBRARY)
             }
             Referent::Function(name) => {
-                let library = super::functions::named(&analysis.checked.module, name)
-                    .iter()
-                    .any(|f| sources.file(f.span.file).name.starts_with(stdlib::PREFIX));
-                (FUNCTION, declaration | if library { DEFAULT_LIBRARY } else { 0 })
+                (FUNCTION, declaration | if library.contains(name.as_str()) { DEFAULT_LIBRARY } else { 0 })
             }
             Referent::Builtin(_) => (FUNCTION, DEFAULT_LIBRARY),
         };
-        let at = position::position(root, name.span.start as usize);
-        let end = position::position(root, name.span.end as usize);
+        out.push(Token { range: name.span.range(), kind, modifiers });
+    }
+    out
+}
+
+/// The protocol's encoding of `tokens` (in order) in `file`: each relative to the one before.
+pub fn encode(file: &SourceFile, tokens: impl IntoIterator<Item = Token>) -> SemanticTokens {
+    let mut data = Vec::new();
+    let (mut line, mut start, mut end_of_last) = (0u32, 0u32, 0u32);
+    for token in tokens {
+        let at = position::position(file, token.range.start);
+        let end = position::position(file, token.range.end);
         // One token per place: the same name may be indexed twice (a declaration that is also
         // the target of its initialising store).
         let overlaps = at.line == line && at.character < end_of_last && !data.is_empty();
         if end.line != at.line || end.character <= at.character || overlaps {
             continue;
         }
-        // Each token is relative to the previous one: lines, then columns on the same line.
         let delta_line = at.line - line;
         let delta_start = if delta_line == 0 { at.character - start } else { at.character };
         data.push(SemanticToken {
             delta_line,
             delta_start,
             length: end.character - at.character,
-            token_type: kind,
-            token_modifiers_bitset: modifiers,
+            token_type: token.kind,
+            token_modifiers_bitset: token.modifiers,
         });
         (line, start, end_of_last) = (at.line, at.character, end.character);
     }

@@ -14,6 +14,7 @@ use super::analysis::Analysis;
 use super::diagnostics;
 use super::documents::Documents;
 use super::loader::EditorLoader;
+use super::view::View;
 
 /// What the server holds between messages.
 pub struct Session {
@@ -73,29 +74,30 @@ impl Session {
     fn stale_includers(&mut self, name: &str) {
         for includer in self.documents.includers(name) {
             if let Some(doc) = self.documents.get_mut(&includer) {
-                doc.analysis = None;
+                doc.invalidate();
             }
             self.unpublished.insert(includer);
         }
     }
 
-    /// Runs `f` on the analysis of the current text of `uri` (checking it first if it is stale)
-    /// and a function naming the compiler's files as URIs (an open document by its own URI);
-    /// `None` for a document that is not open.
+    /// Runs `f` on the view of `uri` to answer from (its current text checked first if it is
+    /// stale; see `view.rs`) and a function naming the compiler's files as URIs (an open
+    /// document by its own URI); `None` for a document that is not open.
     pub fn with<R>(
         &mut self,
         uri: &Uri,
-        f: impl FnOnce(&Analysis, &dyn Fn(&str) -> Option<Uri>) -> R,
+        f: impl FnOnce(&View<'_>, &dyn Fn(&str) -> Option<Uri>) -> R,
     ) -> Option<R> {
         let doc = self.documents.get(uri)?;
         if doc.analysis.is_none() {
             let loader = EditorLoader { fs: &self.loader, documents: &self.documents };
             let analysis = Analysis::run(&doc.name, &doc.text, &loader);
-            self.documents.get_mut(uri)?.analysis = Some(analysis);
+            self.documents.get_mut(uri)?.analysed(analysis);
         }
         let documents = &self.documents;
-        let analysis = documents.get(uri)?.analysis.as_ref()?;
-        Some(f(analysis, &|name| documents.uri_of(name)))
+        let doc = documents.get(uri)?;
+        let view = View::new(doc.analysis.as_ref()?, doc.earlier.as_ref());
+        Some(f(&view, &|name| documents.uri_of(name)))
     }
 
     /// The diagnostics owed to the editor, checking the stale documents they belong to.
@@ -108,7 +110,7 @@ impl Session {
         owed.sort();
         for uri in owed {
             let version = self.documents.get(&uri).map(|d| d.version);
-            if let Some(diagnostics) = self.with(&uri, diagnostics::of) {
+            if let Some(diagnostics) = self.with(&uri, |view, uri_of| diagnostics::of(view.now(), uri_of)) {
                 out.push(PublishDiagnosticsParams { uri, diagnostics, version });
             }
         }

@@ -244,6 +244,9 @@ fn malformed_input_gets_errors_and_the_session_goes_on() {
     client.send_raw(&[0xff, 0xfe, 0x00, 0x80]);
     let answer = client.wait_for(|m| m.get("id") == Some(&Value::Null));
     assert_eq!(answer["error"]["code"], -32700);
+    // A second `initialize`.
+    let answer = client.request("initialize", json!({ "capabilities": {} }));
+    assert_eq!(answer["error"]["code"], -32600);
     // A method nobody knows.
     let answer = client.request("textDocument/frobnicate", json!({}));
     assert_eq!(answer["error"]["code"], -32601);

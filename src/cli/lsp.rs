@@ -6,6 +6,7 @@ use patina_compiler::syntax::preprocess::FsLoader;
 
 use super::LspArgs;
 
+/// Serves one editor session on stdin and stdout, until the editor says `exit`.
 pub fn run(args: LspArgs) -> Result<ExitCode, String> {
     let loader = FsLoader { include_dirs: args.include };
     // The reader thread owns stdin; `Stdin` (unlike its lock) can be sent to it.

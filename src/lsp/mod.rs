@@ -25,6 +25,7 @@ mod uri;
 mod view;
 
 use std::io::{self, BufRead, Write};
+use std::panic::{self, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::sync::mpsc;
 
@@ -88,7 +89,9 @@ pub fn serve(
                     return Ok(state == State::ShutDown);
                 }
                 Incoming::Message(Message::Notification(n)) if state == State::Running => {
-                    notify(&mut session, n)
+                    // A notification has no answer to carry an error: a bug here loses the one
+                    // notification, not the session.
+                    let _ = panic::catch_unwind(AssertUnwindSafe(|| notify(&mut session, n)));
                 }
                 // Before `initialize`, after `shutdown`, and answers to requests never made: ignored.
                 Incoming::Message(_) => {}
@@ -101,7 +104,8 @@ pub fn serve(
             }
             next = messages.try_recv().ok();
         }
-        for params in session.publish() {
+        let owed = panic::catch_unwind(AssertUnwindSafe(|| session.publish())).unwrap_or_default();
+        for params in owed {
             let notification = Notification::new(PublishDiagnostics::METHOD.to_string(), params);
             transport::write(&mut output, notification.into())?;
         }
@@ -156,6 +160,9 @@ fn answer(session: &mut Session, state: &mut State, request: Request) -> Respons
         (State::ShutDown, _) => {
             Response::new_err(id, ErrorCode::InvalidRequest as i32, "the server is shut down".to_string())
         }
+        (State::Running, "initialize") => {
+            Response::new_err(id, ErrorCode::InvalidRequest as i32, "already initialized".to_string())
+        }
         (State::Running, "shutdown") => {
             *state = State::ShutDown;
             Response::new_ok(id, ())
@@ -202,7 +209,7 @@ fn handle<R: lsp_types::request::Request>(
             return Response::new_err(id, ErrorCode::InvalidParams as i32, format!("{}: {e}", R::METHOD));
         }
     };
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(params))) {
+    match panic::catch_unwind(AssertUnwindSafe(|| f(params))) {
         Ok(result) => Response::new_ok(id, result),
         Err(_) => Response::new_err(id, ErrorCode::InternalError as i32, format!("{} failed", R::METHOD)),
     }

@@ -95,6 +95,17 @@ mod tests {
     }
 
     #[test]
+    fn every_module_lies_in_the_source_tree_as_embedded() {
+        // Editors open these paths for go-to-definition: they must hold the text that is compiled.
+        for (name, source) in super::MODULES.iter().chain([&("builtins.sl", super::LIBRARY)]) {
+            let path = super::path(&format!("{}/{name}", super::PREFIX)).expect("a library file");
+            assert_eq!(std::fs::read_to_string(&path).ok().as_deref(), Some(*source), "{}", path.display());
+        }
+        assert_eq!(super::path("<stdlib>/nothing.sl"), None);
+        assert_eq!(super::path("fractal.sl"), None);
+    }
+
+    #[test]
     fn a_stanford_file_can_include_a_renderman_style_module() {
         // lighting.sl's uncalled functions use `illuminance`, which a Stanford-style file would
         // reject if it checked them in its own style.

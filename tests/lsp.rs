@@ -118,6 +118,16 @@ fn definition_of_a_stdlib_function_lands_in_its_source_file() {
     let answer = client.at("textDocument/definition", &doc, line, character);
     let (line, character) = position_of(FBM, "v = fbm", 0);
     assert_eq!(answer["result"]["range"]["start"], json!({ "line": line, "character": character }));
+    // A built-in written in the language: the implementation it was inlined from.
+    let noisy = uri(&dir.join("noisy.sl"));
+    let text = "surface noisy() { Ci = noise(P * 4); }\n";
+    client.open(&noisy, text);
+    let answer = client.at("textDocument/definition", &noisy, 0, text.find("noise").unwrap_or_default());
+    let library = Path::new(env!("CARGO_MANIFEST_DIR")).join("compiler/stdlib/builtins.sl");
+    assert_eq!(answer["result"]["uri"], uri(&library), "{answer}");
+    let source = std::fs::read_to_string(&library).expect("the library built-ins' source");
+    let (line, _) = position_of(&source, "PATINA_NOISE(noise,", 0);
+    assert_eq!(answer["result"]["range"]["start"]["line"], line, "{answer}");
     // Hover over the call shows the library's documentation.
     let (line, character) = position_of(FBM, "fbm(", 0);
     let hover = client.at("textDocument/hover", &doc, line, character);

@@ -25,8 +25,10 @@ pub fn definition(
         Some(Referent::Function(name)) => {
             functions::named(&analysis.checked.module, name).iter().map(|f| f.name.span).collect()
         }
-        // Built-ins and predefined variables are defined by the compiler, not in any file.
-        Some(Referent::Global(_) | Referent::Builtin(_)) => Vec::new(),
+        // A built-in written in the language: the implementation this call runs.
+        Some(Referent::Builtin(_, Some(implementation))) => vec![*implementation],
+        // Other built-ins and predefined variables are the compiler's, in no file.
+        Some(Referent::Global(_) | Referent::Builtin(_, None)) => Vec::new(),
         // An `#include` line: the file it read (its first inclusion from here).
         None => sources
             .files()

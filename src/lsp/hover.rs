@@ -32,7 +32,7 @@ pub fn hover(analysis: &Analysis, at: Position) -> Option<Hover> {
                 Some(out)
             }
             Referent::Function(name) => function(analysis, name),
-            Referent::Builtin(name) => Some(builtin(name)),
+            Referent::Builtin(name, _) => Some(builtin(name)),
         };
         if let Some(text) = text {
             return Some(markdown(text, analysis, name.span));

@@ -92,7 +92,7 @@ pub fn classify(analysis: &Analysis) -> Vec<Token> {
             Referent::Function(name) => {
                 (FUNCTION, declaration | if library.contains(name.as_str()) { DEFAULT_LIBRARY } else { 0 })
             }
-            Referent::Builtin(_) => (FUNCTION, DEFAULT_LIBRARY),
+            Referent::Builtin(..) => (FUNCTION, DEFAULT_LIBRARY),
         };
         out.push(Token { range: name.span.range(), kind, modifiers });
     }

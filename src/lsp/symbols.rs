@@ -8,10 +8,11 @@
 use rustc_hash::FxHashMap;
 use smol_str::SmolStr;
 
-use patina_compiler::ir::{ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
+use patina_compiler::ir::{ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
 use patina_compiler::sema::builtins::builtins;
 use patina_compiler::sema::globals::Global;
 use patina_compiler::source::{FileId, SourceMap, Span};
+use patina_compiler::stdlib;
 use patina_compiler::syntax::ast::{Item, Module};
 
 /// What a name refers to.
@@ -24,8 +25,9 @@ pub enum Referent {
     /// A function written in the language (the file's, an included file's or the standard
     /// library's), by name: all its overloads.
     Function(SmolStr),
-    /// A built-in function.
-    Builtin(&'static str),
+    /// A built-in function, and for one written in the language (`noise`, ...) where the
+    /// implementation this call was inlined from is (`compiler/stdlib/builtins.sl`).
+    Builtin(&'static str, Option<Span>),
 }
 
 /// One place a name is written.
@@ -77,7 +79,7 @@ impl Symbols {
                         index.push(expr.span, Referent::Variable(shader.local(*id).span), false);
                     }
                     ExprKind::Global(g) => index.push(expr.span, Referent::Global(g), false),
-                    ExprKind::Builtin(b, _) => index.call(sources, expr.span, b.name),
+                    ExprKind::Builtin(b, _) => index.call(sources, expr.span, b.name, None),
                     _ => {}
                 }
             }
@@ -118,14 +120,14 @@ impl Symbols {
                         self.push(at, referent, false);
                     }
                 }
-                Stmt::Inline { function, span, .. } => {
+                Stmt::Inline { function, span, body } => {
                     let called = ident_at(sources, *span);
                     if called == function.as_str() {
                         let at = Span { end: span.start + called.len() as u32, ..*span };
                         self.push(at, Referent::Function(function.clone()), false);
                     } else if let Some(b) = builtins().overloads(called).first() {
                         // A built-in written in the language, inlined as its implementation.
-                        self.call(sources, *span, b.name);
+                        self.call(sources, *span, b.name, implementation(sources, shader, body));
                     }
                 }
                 _ => {}
@@ -136,9 +138,10 @@ impl Symbols {
 
     /// A call of the built-in `name` at `span`, if the span starts with the name as written
     /// (not with the type of `color noise(P)`, say).
-    fn call(&mut self, sources: &SourceMap, span: Span, name: &'static str) {
+    fn call(&mut self, sources: &SourceMap, span: Span, name: &'static str, implementation: Option<Span>) {
         if ident_at(sources, span) == name {
-            self.push(Span { end: span.start + name.len() as u32, ..span }, Referent::Builtin(name), false);
+            let at = Span { end: span.start + name.len() as u32, ..span };
+            self.push(at, Referent::Builtin(name, implementation), false);
         }
     }
 
@@ -168,6 +171,27 @@ impl Symbols {
     pub fn variables_in(&self, file: FileId) -> impl Iterator<Item = (&Span, &[Instance])> {
         self.variables.iter().filter(move |(s, _)| s.file == file).map(|(s, i)| (s, i.as_slice()))
     }
+}
+
+/// Where the standard-library code inlined as `body` was written: its first value computed in a
+/// library file (the parameters' stores before it compute the caller's arguments), lifted out of
+/// the macros that generate the implementations to the line that instantiates them.
+fn implementation(sources: &SourceMap, shader: &Shader, body: &[Stmt]) -> Option<Span> {
+    let in_library = |e: ExprId| {
+        let mut span = shader.expr(e).span;
+        while span.expn.is_macro() {
+            span = sources.call_site(span);
+        }
+        sources.file(span.file).name.starts_with(stdlib::PREFIX).then_some(span)
+    };
+    body.iter().find_map(|stmt| match stmt {
+        Stmt::Store { value, .. } | Stmt::Eval(value) => in_library(*value),
+        _ => {
+            let mut found = None;
+            stmt.for_each_block(|inner| found = found.or_else(|| implementation(sources, shader, inner)));
+            found
+        }
+    })
 }
 
 /// The identifier `span` starts with.

@@ -31,8 +31,8 @@ pub fn hover(analysis: &Analysis, at: Position) -> Option<Hover> {
                 rate_lines(&mut out, &[(rate, false)]);
                 Some(out)
             }
-            Referent::Function(name) => function(analysis, name),
-            Referent::Builtin(name, _) => Some(builtin(name)),
+            Referent::Function(name) => function(analysis, name).map(|f| f + &this_call(analysis, offset)),
+            Referent::Builtin(name, _) => Some(builtin(name) + &this_call(analysis, offset)),
         };
         if let Some(text) = text {
             return Some(markdown(text, analysis, name.span));
@@ -43,6 +43,15 @@ pub fn hover(analysis: &Analysis, at: Position) -> Option<Hover> {
     let mut out = format!("{FENCE}\n{}\n```\n", first.ty);
     rate_lines(&mut out, &distinct_rates(found.iter().map(|(s, e)| (*s, e.rate))));
     Some(markdown(out, analysis, first.span))
+}
+
+/// What the call whose name is at `offset` returns here: its type and rate.
+fn this_call(analysis: &Analysis, offset: u32) -> String {
+    let found = analysis.expressions_at(offset);
+    let Some((_, call)) = found.first() else { return String::new() };
+    let mut out = format!("\n---\nthis call: `{}`  \n", call.ty);
+    rate_lines(&mut out, &distinct_rates(found.iter().map(|(s, e)| (*s, e.rate))));
+    out
 }
 
 fn markdown(value: String, analysis: &Analysis, span: Span) -> Hover {

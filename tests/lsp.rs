@@ -128,6 +128,16 @@ fn definition_of_a_stdlib_function_lands_in_its_source_file() {
     let source = std::fs::read_to_string(&library).expect("the library built-ins' source");
     let (line, _) = position_of(&source, "PATINA_NOISE(noise,", 0);
     assert_eq!(answer["result"]["range"]["start"]["line"], line, "{answer}");
+    // In a function no shader calls (no IR), a name still leads to its declaration and type.
+    let helper = uri(&dir.join("helper.sl"));
+    let text = "float unused(float a) { return a * 2; }\nsurface s() { Ci = 1; }\n";
+    client.open(&helper, text);
+    let (line, character) = position_of(text, "a * 2", 0);
+    let hover = client.at("textDocument/hover", &helper, line, character);
+    assert!(hover["result"]["contents"]["value"].as_str().unwrap_or_default().contains("float a"), "{hover}");
+    let answer = client.at("textDocument/definition", &helper, line, character);
+    let (line, character) = position_of(text, "a)", 0);
+    assert_eq!(answer["result"]["range"]["start"], json!({ "line": line, "character": character }));
     // Hover over the call shows the library's documentation.
     let (line, character) = position_of(FBM, "fbm(", 0);
     let hover = client.at("textDocument/hover", &doc, line, character);

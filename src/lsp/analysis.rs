@@ -91,6 +91,18 @@ impl Analysis {
         !has_shaders || self.shaders().next().is_some()
     }
 
+    /// The identifier of the document around byte `offset`, with its span.
+    pub fn word_at(&self, offset: u32) -> Option<(&str, Span)> {
+        let text = &*self.root().text;
+        let offset = (offset as usize).min(text.len());
+        let is_word = |c: char| c.is_ascii_alphanumeric() || c == '_';
+        let start = text[..offset].rfind(|c: char| !is_word(c)).map_or(0, |i| i + 1);
+        let end = text[offset..].find(|c: char| !is_word(c)).map_or(text.len(), |i| offset + i);
+        let word = &text[start..end];
+        let starts_like_a_name = word.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
+        starts_like_a_name.then(|| (word, Span::new(self.checked.root, start..end)))
+    }
+
     /// Whether `file` is the document (not a file it includes).
     pub fn is_root(&self, file: FileId) -> bool {
         file == self.checked.root

@@ -6,7 +6,7 @@ use patina_compiler::source::Span;
 
 use super::analysis::Analysis;
 use super::symbols::Referent;
-use super::{functions, position};
+use super::{functions, position, scope};
 
 /// Where the name at `at` is defined; `uri_of` names the compiler's files as URIs.
 pub fn definition(
@@ -29,14 +29,24 @@ pub fn definition(
         Some(Referent::Builtin(_, Some(implementation))) => vec![*implementation],
         // Other built-ins and predefined variables are the compiler's, in no file.
         Some(Referent::Global(_) | Referent::Builtin(_, None)) => Vec::new(),
-        // An `#include` line: the file it read (its first inclusion from here).
-        None => sources
-            .files()
-            .find(|(_, f)| {
-                f.included_from.is_some_and(|s| analysis.is_root(s.file) && s.contains_offset(offset))
-            })
-            .map(|(id, _)| vec![Span::new(id, 0..0)])
-            .unwrap_or_default(),
+        // A name the IR does not know (in a function no shader calls): its declaration by the
+        // blocks around it. Else, on an `#include` line: the file it read (its first inclusion
+        // from here).
+        None => {
+            let module = &analysis.checked.module;
+            let declared = analysis
+                .word_at(offset)
+                .and_then(|(word, _)| scope::declaration(module, analysis.checked.root, offset, word));
+            let included = || {
+                sources
+                    .files()
+                    .find(|(_, f)| {
+                        f.included_from.is_some_and(|s| analysis.is_root(s.file) && s.contains_offset(offset))
+                    })
+                    .map(|(id, _)| Span::new(id, 0..0))
+            };
+            declared.map(|d| d.name.span).or_else(included).into_iter().collect()
+        }
     };
     let locations: Vec<Location> = spans.into_iter().filter_map(location).collect();
     match locations.len() {

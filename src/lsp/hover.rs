@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use lsp_types::{Hover, HoverContents, MarkupContent, MarkupKind, Position};
 use patina_compiler::ir::LocalKind;
-use patina_compiler::ir::types::Rate;
+use patina_compiler::ir::types::{Base, Rate};
 use patina_compiler::sema::builtins::builtins;
 use patina_compiler::sema::explain::stage;
 use patina_compiler::source::Span;
@@ -13,7 +13,7 @@ use patina_compiler::stdlib;
 
 use super::analysis::{Analysis, distinct_rates};
 use super::symbols::Referent;
-use super::{functions, position};
+use super::{functions, position, scope};
 
 /// The fence of code blocks: C's highlighting fits the language's syntax, and every client has it.
 const FENCE: &str = "```c";
@@ -37,6 +37,18 @@ pub fn hover(analysis: &Analysis, at: Position) -> Option<Hover> {
         if let Some(text) = text {
             return Some(markdown(text, analysis, name.span));
         }
+    }
+    if let Some((word, span)) = analysis.word_at(offset)
+        && let Some(declared) =
+            scope::declaration(&analysis.checked.module, analysis.checked.root, offset, word)
+    {
+        let ty = Base::from_ast(declared.ty.name).name();
+        let what = if declared.parameter { "parameter" } else { "variable" };
+        let out = format!(
+            "{FENCE}\n{ty} {word}\n```\n{what}; no rate: it is in no checked shader (a function no shader \
+             calls is checked on its own, without a caller to give it rates)\n"
+        );
+        return Some(markdown(out, analysis, span));
     }
     let found = analysis.expressions_at(offset);
     let (_, first) = found.first()?;

@@ -62,6 +62,19 @@ pub fn visible(module: &Module, file: FileId, offset: u32) -> Vec<Declared<'_>> 
     out
 }
 
+/// The declaration the name `name` written at byte `offset` of `file` refers to by the blocks
+/// around it (the innermost visible one), or that it is. For names the IR does not know: those
+/// in a function no shader calls, which the compiler checks on its own and keeps no IR of.
+pub fn declaration<'a>(module: &'a Module, file: FileId, offset: u32, name: &str) -> Option<Declared<'a>> {
+    let here = |d: &Declared<'_>| {
+        d.name.name == name && d.name.span.file == file && d.name.span.contains_offset(offset)
+    };
+    all(module)
+        .into_iter()
+        .find(here)
+        .or_else(|| visible(module, file, offset).into_iter().rev().find(|d| d.name.name == name))
+}
+
 /// The declarations of `stmt` visible at `offset`: its own if it ends before, those of the blocks
 /// around the position.
 fn before<'a>(stmt: &'a Stmt, inside: &dyn Fn(Span) -> bool, offset: u32, out: &mut Vec<Declared<'a>>) {

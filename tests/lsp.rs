@@ -218,7 +218,11 @@ fn decode(data: &Value) -> Vec<(usize, usize, u64, u64)> {
 fn an_include_is_read_from_the_editors_unsaved_buffer() {
     let dir = workspace("include");
     std::fs::write(dir.join("helpers.h"), "float helper(float x) { return x; }\n").expect("write");
-    let mut client = Client::start(&dir);
+    let watching = json!({ "workspace": { "didChangeWatchedFiles": { "dynamicRegistration": true } } });
+    let mut client = Client::start_with(&dir, watching);
+    // The server asks to hear of shader files changed on disk.
+    let register = client.wait_for(|m| m["method"] == "client/registerCapability");
+    assert_eq!(register["params"]["registrations"][0]["method"], "workspace/didChangeWatchedFiles");
     let main_text =
         "#include \"helpers.h\"\n#include \"unsaved.h\"\nsurface t() { Ci = helper2(s) + more(t); }\n";
     let main = uri(&dir.join("main.sl"));
@@ -247,6 +251,14 @@ fn an_include_is_read_from_the_editors_unsaved_buffer() {
     assert_eq!(broken[0]["range"]["start"]["line"], 0);
     let related = broken[0]["relatedInformation"].as_array().expect("where the error is");
     assert!(related.iter().any(|r| r["location"]["uri"] == helpers.as_str()), "{related:#?}");
+    // Closed, the header is read from the disk again, where `helper2` is missing...
+    client.notify("textDocument/didClose", json!({ "textDocument": { "uri": helpers } }));
+    let closed = client.diagnostics(&main, 1);
+    assert_eq!(closed.len(), 1, "{closed:#?}");
+    // ... until it is written there, which the client reports.
+    std::fs::write(dir.join("helpers.h"), "float helper2(float x) { return x; }\n").expect("write");
+    client.notify("workspace/didChangeWatchedFiles", json!({ "changes": [{ "uri": helpers, "type": 2 }] }));
+    assert!(client.diagnostics(&main, 1).is_empty());
     assert!(client.shutdown().success());
 }
 

@@ -31,10 +31,12 @@ use std::sync::mpsc;
 
 use lsp_server::{ErrorCode, Message, Notification, Request, Response};
 use lsp_types::notification::{
-    DidChangeTextDocument, DidCloseTextDocument, DidOpenTextDocument, Notification as _, PublishDiagnostics,
+    DidChangeTextDocument, DidChangeWatchedFiles, DidCloseTextDocument, DidOpenTextDocument, Initialized,
+    Notification as _, PublishDiagnostics,
 };
 use lsp_types::request::{
-    Completion, GotoDefinition, HoverRequest, InlayHintRequest, Request as _, SemanticTokensFullRequest,
+    Completion, GotoDefinition, HoverRequest, InlayHintRequest, RegisterCapability, Request as _,
+    SemanticTokensFullRequest,
 };
 use lsp_types::{
     CompletionOptions, HoverProviderCapability, InitializeParams, InitializeResult, OneOf,
@@ -87,6 +89,11 @@ pub fn serve(
                 }
                 Incoming::Message(Message::Notification(n)) if n.method == "exit" => {
                     return Ok(state == State::ShutDown);
+                }
+                Incoming::Message(Message::Notification(n))
+                    if n.method == Initialized::METHOD && session.client_watches_files =>
+                {
+                    transport::write(&mut output, watch_includes().into())?;
                 }
                 Incoming::Message(Message::Notification(n)) if state == State::Running => {
                     // A notification has no answer to carry an error: a bug here loses the one
@@ -142,6 +149,9 @@ fn answer(session: &mut Session, state: &mut State, request: Request) -> Respons
                 Err(e) => return Response::new_err(id, ErrorCode::InvalidParams as i32, e.to_string()),
             };
             session.add_include_dirs(include_dirs(&params));
+            let watched =
+                params.capabilities.workspace.as_ref().and_then(|w| w.did_change_watched_files.as_ref());
+            session.client_watches_files = watched.and_then(|w| w.dynamic_registration) == Some(true);
             *state = State::Running;
             let result = InitializeResult {
                 capabilities: capabilities(),
@@ -235,8 +245,31 @@ fn notify(session: &mut Session, notification: Notification) {
                 session.close(&p.text_document.uri);
             }
         }
+        DidChangeWatchedFiles::METHOD => {
+            if let Ok(p) = serde_json::from_value::<lsp_types::DidChangeWatchedFilesParams>(params) {
+                p.changes.iter().for_each(|change| session.changed_on_disk(&change.uri));
+            }
+        }
         _ => {}
     }
+}
+
+/// Asks the client to report changes to the shader files on disk, which includes may read (its
+/// answer needs no reading: a client that refuses simply sends nothing).
+fn watch_includes() -> Request {
+    let options = lsp_types::DidChangeWatchedFilesRegistrationOptions {
+        watchers: ["**/*.sl", "**/*.h"]
+            .into_iter()
+            .map(|glob| lsp_types::FileSystemWatcher { glob_pattern: glob.to_string().into(), kind: None })
+            .collect(),
+    };
+    let registration = lsp_types::Registration {
+        id: "patina-includes".to_string(),
+        method: DidChangeWatchedFiles::METHOD.to_string(),
+        register_options: serde_json::to_value(options).ok(),
+    };
+    let params = lsp_types::RegistrationParams { registrations: vec![registration] };
+    Request::new("patina-watch".to_string().into(), RegisterCapability::METHOD.to_string(), params)
 }
 
 /// The include directories the client names in its initialization options

@@ -25,12 +25,21 @@ pub struct Session {
     unpublished: HashSet<Uri>,
     /// The documents just closed, whose diagnostics must be cleared.
     closed: Vec<Uri>,
+    /// Whether the client can watch files for the server (`workspace/didChangeWatchedFiles`
+    /// registered dynamically), so that includes changed outside the editor are seen.
+    pub client_watches_files: bool,
 }
 
 impl Session {
     /// A session that searches `loader`'s include directories.
     pub fn new(loader: FsLoader) -> Session {
-        Session { documents: Documents::default(), loader, unpublished: HashSet::new(), closed: Vec::new() }
+        Session {
+            documents: Documents::default(),
+            loader,
+            unpublished: HashSet::new(),
+            closed: Vec::new(),
+            client_watches_files: false,
+        }
     }
 
     /// Adds include directories (from the client's initialization options).
@@ -60,6 +69,15 @@ impl Session {
             self.documents.close(uri);
             self.unpublished.remove(uri);
             self.closed.push(uri.clone());
+        }
+    }
+
+    /// A file changed on disk (the client watches them for us): the documents that include it
+    /// are stale, unless it is open, whose buffer they read instead.
+    pub fn changed_on_disk(&mut self, uri: &Uri) {
+        let name = super::uri::file_name(uri);
+        if self.documents.get(uri).is_none() {
+            self.stale_includers(&name);
         }
     }
 

@@ -27,6 +27,11 @@ pub struct Client {
 impl Client {
     /// Starts `patina lsp` and initializes it with `root` as the workspace.
     pub fn start(root: &Path) -> Client {
+        Client::start_with(root, json!({}))
+    }
+
+    /// Starts `patina lsp` as a client with these capabilities.
+    pub fn start_with(root: &Path, capabilities: Value) -> Client {
         let mut child = Command::new(env!("CARGO_BIN_EXE_patina"))
             .arg("lsp")
             .current_dir(root)
@@ -48,8 +53,10 @@ impl Client {
         });
         let mut client =
             Client { child, stdin, incoming, backlog: Vec::new(), next_id: 1, capabilities: Value::Null };
-        let answer = client
-            .request("initialize", json!({ "processId": null, "rootUri": uri(root), "capabilities": {} }));
+        let answer = client.request(
+            "initialize",
+            json!({ "processId": null, "rootUri": uri(root), "capabilities": capabilities }),
+        );
         client.capabilities = answer["result"]["capabilities"].clone();
         client.notify("initialized", json!({}));
         client

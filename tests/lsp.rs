@@ -10,12 +10,27 @@ use std::time::{Duration, Instant};
 use client::{Client, position_of, uri};
 use serde_json::{Value, json};
 
-/// A fresh directory for one test's files.
-fn workspace(test: &str) -> PathBuf {
+/// A fresh directory for one test's files, removed when the test ends.
+struct Workspace(PathBuf);
+
+impl std::ops::Deref for Workspace {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Workspace {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn workspace(test: &str) -> Workspace {
     let dir = std::env::temp_dir().join(format!("patina-lsp-{test}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("a temporary directory");
-    dir
+    Workspace(dir)
 }
 
 /// A uniform variable assigned a varying value (E0602), and variables whose rates are inferred.

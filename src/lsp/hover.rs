@@ -8,6 +8,7 @@ use patina_compiler::ir::LocalKind;
 use patina_compiler::ir::types::{Base, Rate};
 use patina_compiler::sema::builtins::builtins;
 use patina_compiler::sema::explain::stage;
+use patina_compiler::sema::globals::Styles;
 use patina_compiler::source::Span;
 use patina_compiler::stdlib;
 
@@ -26,9 +27,16 @@ pub fn hover(analysis: &Analysis, at: Position) -> Option<Hover> {
         let text = match &name.referent {
             Referent::Variable(declaration) => variable(analysis, *declaration),
             Referent::Global(g) => {
-                let rate = Rate { frequency: g.frequency, perlight: g.perlight };
                 let mut out = format!("{FENCE}\n{} {}\n```\npredefined: {}\n\n", g.ty.name(), g.name, g.doc);
-                rate_lines(&mut out, &[(rate, false)]);
+                // The rate the value has here (binding can raise a light's values), in the style
+                // of the shader it is read in (which decides the stage).
+                let here = analysis.expressions_at(offset);
+                let mut rates = distinct_rates(here.iter().map(|(s, e)| (*s, e.rate)));
+                if rates.is_empty() {
+                    let stanford = matches!(g.styles, Styles::Stanford);
+                    rates.push((Rate { frequency: g.frequency, perlight: g.perlight }, stanford));
+                }
+                rate_lines(&mut out, &rates);
                 Some(out)
             }
             Referent::Function(name) => function(analysis, name).map(|f| f + &this_call(analysis, offset)),

@@ -97,6 +97,13 @@ fn hover_shows_the_rate_and_stage_of_a_variable_and_an_expression() {
         client.request("textDocument/semanticTokens/full", json!({ "textDocument": { "uri": doc } }));
     let tokens = decode(&answer["result"]["data"]);
     assert!(tokens.iter().any(|t| (t.0, t.1) == (line, character)), "{tokens:?}");
+    // A shader with a type error still has its rates (the compiler keeps what it could lower).
+    let typo = RATES.replace("u = v;", "u = nothing;");
+    client.change(&doc, 3, &typo);
+    assert_eq!(client.diagnostics(&doc, 3)[0]["code"], "E0501");
+    let (line, character) = position_of(&typo, "color(v", 6);
+    let v = text(client.at("textDocument/hover", &doc, line, character));
+    assert!(v.contains("float v") && v.contains("rate: **fragment**"), "{v}");
     assert!(client.shutdown().success());
 }
 

@@ -1,6 +1,7 @@
 //! The `patina` command line.
 
 mod cli;
+mod lsp;
 
 use std::process::ExitCode;
 

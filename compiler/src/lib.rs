@@ -28,6 +28,10 @@ pub struct Checked {
     pub module: syntax::ast::Module,
     /// The checked shaders (empty when the source did not parse; shaders with errors are left out).
     pub program: ir::Program,
+    /// The shaders with semantic errors, lowered as far as they went (the statements and
+    /// expressions with errors left out) and with their rates inferred: for tools that show
+    /// types and rates while the user fixes the errors (`patina lsp`). Never for later stages.
+    pub incomplete: Vec<ir::Shader>,
     /// Errors and warnings, in the order they were found.
     pub diagnostics: Diagnostics,
 }
@@ -51,7 +55,14 @@ pub fn check_source(name: &str, text: &str, loader: &dyn SourceLoader) -> Checke
     let module = syntax::parse_file(&mut sources, root, loader, &mut diagnostics);
     // Semantics on a tree with syntax errors would only echo them.
     if diagnostics.has_errors() {
-        return Checked { sources, root, module, program: ir::Program::default(), diagnostics };
+        return Checked {
+            sources,
+            root,
+            module,
+            program: ir::Program::default(),
+            incomplete: Vec::new(),
+            diagnostics,
+        };
     }
     // The built-ins written in the language are parsed only for files that may call them; a call
     // the scan misses (a name made by token pasting) is caught by the semantic stage, which then
@@ -65,5 +76,5 @@ pub fn check_source(name: &str, text: &str, loader: &dyn SourceLoader) -> Checke
         library = Some(stdlib::parse_library_builtins(&mut sources, loader, &mut diagnostics));
         checked = sema::check(&module, library.as_ref(), stdlib::files(&sources), &mut diagnostics);
     }
-    Checked { sources, root, module, program: checked.program, diagnostics }
+    Checked { sources, root, module, program: checked.program, incomplete: checked.incomplete, diagnostics }
 }

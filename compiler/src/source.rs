@@ -108,6 +108,28 @@ impl SourceFile {
     }
 }
 
+/// The `//` comment block directly above byte `start` of `text`: a definition's documentation,
+/// as the standard library writes it. Lines come top to bottom, each without its slashes and the
+/// space after them; a blank line (or any line that is not a comment) ends the block, and the
+/// definition's own indentation does not count as a line. Empty when there is none (or `start`
+/// is not a character boundary of `text`).
+pub fn comment_above(text: &str, start: usize) -> Vec<&str> {
+    let Some(head) = text.get(..start.min(text.len())) else { return Vec::new() };
+    let mut lines: Vec<&str> = head
+        .trim_end_matches([' ', '\t'])
+        .lines()
+        .rev()
+        .map(str::trim)
+        .take_while(|l| l.starts_with("//"))
+        .map(|l| {
+            let body = l.trim_start_matches('/');
+            body.strip_prefix(' ').unwrap_or(body).trim_end()
+        })
+        .collect();
+    lines.reverse();
+    lines
+}
+
 /// What a macro expansion was: which macro, defined where, used where.
 #[derive(Debug, Clone)]
 pub struct Expansion {
@@ -260,5 +282,21 @@ impl<'a> codespan_reporting::files::Files<'a> for SourceMap {
             given: line_index,
             max: file.line_starts.len() - 1,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::comment_above;
+
+    #[test]
+    fn the_comment_block_directly_above_is_read_top_to_bottom() {
+        let text = "// far\n\n// The fbm.\n///   indented\n    float f();\n";
+        assert_eq!(comment_above(text, text.find("float").unwrap()), ["The fbm.", "  indented"]);
+        assert!(comment_above(text, text.find("// The").unwrap()).is_empty());
+        // Inside a character: nothing (and no panic); past the end: the end.
+        assert_eq!(comment_above("// é\nx", 6), ["é"]);
+        assert!(comment_above("// é\nx", 4).is_empty());
+        assert_eq!(comment_above("// é\n", 99), ["é"]);
     }
 }

@@ -28,8 +28,19 @@ pub fn source(name: &str) -> Option<&'static str> {
 pub const LIBRARY_BUILTINS: &[&str] =
     &["noise", "snoise", "pnoise", "cellnoise", "diffuse", "specular", "phong", "specularbrdf"];
 
-/// The file that implements the library built-ins; it is not for `#include`.
-const LIBRARY: &str = include_str!("../stdlib/builtins.sl");
+/// The file that implements the library built-ins (shown as `<stdlib>/builtins.sl`); it is not
+/// for `#include`.
+pub const LIBRARY: &str = include_str!("../stdlib/builtins.sl");
+
+/// Where the standard-library file shown as `name` (`<stdlib>/fractal.sl`, as the source map names
+/// it) lies in the compiler's source tree, for tools that open it (an editor's go-to-definition).
+/// `None` for a name outside the library. The path is the one this crate was built from, so it
+/// may be gone from a machine the binary was copied to; the text itself is always embedded.
+pub fn path(name: &str) -> Option<std::path::PathBuf> {
+    let file = name.strip_prefix(PREFIX)?.strip_prefix('/')?;
+    let known = file == "builtins.sl" || source(file).is_some();
+    known.then(|| std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("stdlib").join(file))
+}
 
 /// Whether `name` is a built-in written in the language.
 pub fn is_library_builtin(name: &str) -> bool {
@@ -81,6 +92,17 @@ mod tests {
                 checked.diagnostics.iter().map(|d| format!("{}: {}", d.code, d.message)).collect();
             assert!(messages.is_empty(), "{name}: {messages:#?}");
         }
+    }
+
+    #[test]
+    fn every_module_lies_in_the_source_tree_as_embedded() {
+        // Editors open these paths for go-to-definition: they must hold the text that is compiled.
+        for (name, source) in super::MODULES.iter().chain([&("builtins.sl", super::LIBRARY)]) {
+            let path = super::path(&format!("{}/{name}", super::PREFIX)).expect("a library file");
+            assert_eq!(std::fs::read_to_string(&path).ok().as_deref(), Some(*source), "{}", path.display());
+        }
+        assert_eq!(super::path("<stdlib>/nothing.sl"), None);
+        assert_eq!(super::path("fractal.sl"), None);
     }
 
     #[test]

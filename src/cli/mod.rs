@@ -8,6 +8,7 @@ mod eval;
 mod explain;
 mod explain_scene;
 mod gallery;
+mod lsp;
 mod plot;
 mod progress;
 mod render;
@@ -56,6 +57,18 @@ enum Command {
     /// Check, compile and render every shader file of a directory (third-party shaders) on both
     /// backends, in a scene made for each shader's kind; write a results table and a contact sheet.
     Corpus(CorpusArgs),
+    /// A Language Server Protocol server over stdin and stdout, for editors: diagnostics as you
+    /// type, hover with types and rates, go to definition, completion, inlay hints, semantic tokens.
+    Lsp(LspArgs),
+}
+
+/// Arguments of `patina lsp`.
+#[derive(clap::Args, Debug)]
+pub struct LspArgs {
+    /// Add an `#include` search directory (after each file's own; repeat for more). Clients may
+    /// add more with the initialization option `includeDirs`.
+    #[arg(short = 'I', value_name = "DIR")]
+    include: Vec<PathBuf>,
 }
 
 /// Arguments of `patina corpus`.
@@ -352,5 +365,6 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Stability(args) => stability::run(args),
         Command::Watch(args) => watch::run(args),
         Command::Corpus(args) => corpus::run(args),
+        Command::Lsp(args) => lsp::run(args),
     }
 }

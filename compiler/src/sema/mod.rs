@@ -53,6 +53,8 @@ fn functions<'a>(module: &'a ast::Module, diags: &mut Diagnostics) -> FunctionTa
 pub struct Checked {
     /// The shaders without errors.
     pub program: Program,
+    /// The shaders with errors, lowered as far as they went (see [`crate::Checked::incomplete`]).
+    pub incomplete: Vec<crate::ir::Shader>,
     /// Whether the module calls a built-in written in the language (`compiler/stdlib/builtins.sl`) while
     /// `library` was not given: check again with it.
     pub wants_library: bool,
@@ -79,13 +81,21 @@ pub fn check(
         .filter_map(|i| if let Item::Variable(v) = i { Some(&**v) } else { None })
         .collect();
     let mut program = Program::default();
+    let mut incomplete = Vec::new();
     let mut shared = lower::Shared::default();
     for item in &module.items {
-        if let Item::Shader(s) = item
-            && let Some(mut shader) = lower::lower_shader(s, &globals, &table, &mut shared, diags)
-        {
-            rates::infer(&mut shader, diags);
-            program.shaders.push(shader);
+        let Item::Shader(s) = item else { continue };
+        match lower::lower_shader(s, &globals, &table, &mut shared, diags) {
+            (mut shader, false) => {
+                rates::infer(&mut shader, diags);
+                program.shaders.push(shader);
+            }
+            // Rates are inferred for tools, which show them while the user fixes the errors;
+            // what the check says about a body with parts missing would only mislead.
+            (mut partial, true) => {
+                rates::infer(&mut partial, &mut Diagnostics::default());
+                incomplete.push(partial);
+            }
         }
     }
     // Functions are checked where they are inlined; the ones no shader calls (all of them, in a
@@ -112,5 +122,5 @@ pub fn check(
     for f in unused {
         lower::check_function(f, stanford, &globals, &table, &mut shared, diags);
     }
-    Checked { program, wants_library: shared.wants_library }
+    Checked { program, incomplete, wants_library: shared.wants_library }
 }

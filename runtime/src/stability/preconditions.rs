@@ -67,12 +67,9 @@ impl Constraint {
 
 /// The preconditions stated in the comment lines directly above byte `start` of `text`.
 pub fn before(text: &str, start: usize) -> Vec<Precondition> {
-    let head = &text[..start.min(text.len())];
-    // The definition's indentation is not a line; a blank line ends the comment block.
-    let lines = head.trim_end_matches([' ', '\t']).lines().rev();
     let mut out = Vec::new();
-    for line in lines.map(str::trim).take_while(|l| l.starts_with("//")) {
-        if let Some(rest) = line.trim_start_matches('/').trim().strip_prefix("sweep:") {
+    for line in patina_compiler::source::comment_above(text, start) {
+        if let Some(rest) = line.trim().strip_prefix("sweep:") {
             out.extend(rest.split(';').map(str::trim).filter(|c| !c.is_empty()).map(parse));
         }
     }

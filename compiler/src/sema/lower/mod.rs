@@ -115,14 +115,15 @@ pub(super) struct Lowerer<'a> {
     uniform_random: bool,
 }
 
-/// Lowers one shader; `None` if it had errors (they have been reported).
+/// Lowers one shader, and says whether it had errors (they have been reported): the parts with
+/// errors are then left out of its body.
 pub(super) fn lower_shader(
     shader: &ast::ShaderDef,
     globals: &[&ast::VarDecl],
     functions: &Functions<'_>,
     shared: &mut Shared,
     diags: &mut Diagnostics,
-) -> Option<Shader> {
+) -> (Shader, bool) {
     let (stanford, result_type) = match &shader.style {
         ShaderStyle::RenderMan => (false, Type::VOID),
         ShaderStyle::Stanford { return_type } => (true, Type::of(Base::from_ast(return_type.name))),
@@ -157,10 +158,8 @@ pub(super) fn lower_shader(
             .with_label(shader.name.span, format!("declared to return `{result_type}`")),
         );
     }
-    if l.failed {
-        return None;
-    }
-    Some(Shader {
+    let failed = l.failed;
+    let lowered = Shader {
         name: shader.name.name.clone(),
         kind: shader.kind,
         stanford,
@@ -171,7 +170,8 @@ pub(super) fn lower_shader(
         exprs: l.exprs,
         body,
         span: shader.span,
-    })
+    };
+    (lowered, failed)
 }
 
 /// Checks a function's body on its own, for functions no shader calls (their errors would

@@ -89,8 +89,18 @@ pub struct FsLoader {
     pub include_dirs: Vec<PathBuf>,
 }
 
-impl SourceLoader for FsLoader {
-    fn load(&self, target: &str, quoted: bool, includer: &str) -> Result<Loaded, LoadError> {
+impl FsLoader {
+    /// The search of [`FsLoader::load`] with the reading of each candidate left to `read`, which
+    /// answers as [`read_source_file`] does (`Ok(None)`: no such file, go on to the next). An
+    /// editor's loader reads its open, unsaved buffers first and the disk after, so that both
+    /// find the same file for the same `#include`.
+    pub fn load_with(
+        &self,
+        target: &str,
+        quoted: bool,
+        includer: &str,
+        read: &mut dyn FnMut(&Path) -> Result<Option<String>, String>,
+    ) -> Result<Loaded, LoadError> {
         let mut searched = Vec::new();
         let includer_dir = directory_of(includer);
         if quoted
@@ -105,13 +115,19 @@ impl SourceLoader for FsLoader {
         }
         candidates.extend(self.include_dirs.iter().map(|d| d.join(target).to_string_lossy().into_owned()));
         for name in candidates {
-            match read_source_file(Path::new(&name)) {
+            match read(Path::new(&name)) {
                 Ok(Some(text)) => return Ok(Loaded { name, text }),
                 Ok(None) => searched.push(name),
                 Err(reason) => return Err(LoadError::Unreadable { name, reason }),
             }
         }
         load_stdlib(target, &mut searched).ok_or(LoadError::NotFound { searched })
+    }
+}
+
+impl SourceLoader for FsLoader {
+    fn load(&self, target: &str, quoted: bool, includer: &str) -> Result<Loaded, LoadError> {
+        self.load_with(target, quoted, includer, &mut read_source_file)
     }
 
     fn read_as_latin1(&self, name: &str) -> bool {

@@ -1,6 +1,8 @@
 //! Patina's compiler: shading-language source to diagnostics and, stage by stage, to WGSL and the
 //! CPU interpreter. See ARCHITECTURE.md at the repository root for the pipeline.
 
+#![warn(missing_docs)]
+
 pub mod backend;
 pub mod bind;
 pub mod diag;

@@ -1,6 +1,8 @@
 //! Patina's runtime: the wgpu renderer, meshes, cameras, scenes, images and the CPU reference
 //! rasterizer that the GPU output is measured against.
 
+#![warn(missing_docs)]
+
 pub mod camera;
 pub mod corpus;
 pub mod gpu;

@@ -35,34 +35,54 @@ pub enum TokenKind {
     StringLit,
 
     // Keywords: shader kinds.
+    /// `surface`: a shader kind. Inside a RenderMan-style definition, a name unless `(` follows
+    /// (`surface(...)` is message passing).
     #[token("surface")]
     Surface,
+    /// `light`: a shader kind; in a RenderMan-style definition a name unless `(` follows.
     #[token("light")]
     Light,
+    /// `displacement`: a shader kind; in a RenderMan-style definition a name unless `(` follows.
     #[token("displacement")]
     Displacement,
+    /// `volume`: a shader kind; in a RenderMan-style definition a name unless `(` follows.
     #[token("volume")]
     Volume,
+    /// `imager`: a shader kind; in a RenderMan-style definition a name unless `(` follows.
     #[token("imager")]
     Imager,
+    /// `shader`: follows the kind in a Stanford shader (`surface shader float4 name(...)`).
     #[token("shader")]
     Shader,
 
     // Keywords: qualifiers.
+    /// `uniform`: RenderMan's storage class for one value per primitive group.
     #[token("uniform")]
     Uniform,
+    /// `varying`: RenderMan's storage class for a value that varies over the surface (per vertex
+    /// for a parameter, per fragment for a variable).
     #[token("varying")]
     Varying,
+    /// `output`: a parameter the shader or function writes (both styles).
     #[token("output")]
     Output,
+    /// `extern`: a variable of an enclosing scope (both styles).
     #[token("extern")]
     Extern,
+    /// `constant`: the lowest Stanford rate, one value for every primitive group; a keyword only in
+    /// the Stanford style (a RenderMan-style file may use it as a name).
     #[token("constant")]
     Constant,
+    /// `vertex`: the Stanford per-vertex rate; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("vertex")]
     Vertex,
+    /// `fragment`: the Stanford per-fragment rate; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("fragment")]
     Fragment,
+    /// `perlight`: Stanford's one instance per bound light; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("perlight")]
     Perlight,
     /// `primitive group`, the Stanford rate, as one token.
@@ -73,66 +93,106 @@ pub enum TokenKind {
     Primitive,
 
     // Keywords: types.
+    /// `float`: a type word in both styles.
     #[token("float")]
     Float,
+    /// `color`: RenderMan's contextual type word: a type in type position, elsewhere a name.
     #[token("color")]
     Color,
+    /// `point`: RenderMan's contextual type word: a type in type position, elsewhere a name.
     #[token("point")]
     Point,
+    /// `vector`: RenderMan's contextual type word: a type in type position, elsewhere a name.
     #[token("vector")]
     Vector,
+    /// `normal`: RenderMan's contextual type word: a type in type position, elsewhere a name.
     #[token("normal")]
     Normal,
+    /// `matrix`: RenderMan's contextual type word for the 4×4 matrix: a type in type position,
+    /// elsewhere a name.
     #[token("matrix")]
     Matrix,
+    /// `string`: RenderMan's contextual type word: a type in type position, elsewhere a name.
     #[token("string")]
     String,
+    /// `void`: the result type of a function that returns nothing (both styles).
     #[token("void")]
     Void,
+    /// `float3`: Stanford's plain 3-vector type; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("float3")]
     Float3,
+    /// `float4`: Stanford's four-float type; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("float4")]
     Float4,
+    /// `matrix3`: Stanford's 3×3 matrix type; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("matrix3")]
     Matrix3,
+    /// `matrix4`: Stanford's 4×4 matrix type (RenderMan's `matrix`); a keyword only in the Stanford
+    /// style (a RenderMan-style file may use it as a name).
     #[token("matrix4")]
     Matrix4,
+    /// `bool`: the type of comparisons; a keyword only in the Stanford style (a RenderMan-style
+    /// file may use it as a name).
     #[token("bool")]
     Bool,
+    /// `texref`: Stanford's texture reference type; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("texref")]
     Texref,
+    /// `clampf`: Stanford's float kept in [0, 1]; a keyword only in the Stanford style (a
+    /// RenderMan-style file may use it as a name).
     #[token("clampf")]
     Clampf,
+    /// `int`: the 32-bit signed integer type (both styles have it); a keyword only in the Stanford
+    /// style (a RenderMan-style file may use it as a name).
     #[token("int")]
     Int,
+    /// `uint`: the 32-bit unsigned integer type (both styles have it); a keyword only in the
+    /// Stanford style (a RenderMan-style file may use it as a name).
     #[token("uint")]
     Uint,
 
     // Keywords: statements and literals.
+    /// `if`.
     #[token("if")]
     If,
+    /// `else`, which belongs to the nearest `if`.
     #[token("else")]
     Else,
+    /// `for`.
     #[token("for")]
     For,
+    /// `while`.
     #[token("while")]
     While,
+    /// `break`, optionally followed by the number of loops to leave (`break 2`).
     #[token("break")]
     Break,
+    /// `continue`, optionally followed by the number of the loop to continue (`continue 2`).
     #[token("continue")]
     Continue,
+    /// `return`.
     #[token("return")]
     Return,
+    /// `illuminance`: RenderMan's loop over the bound lights.
     #[token("illuminance")]
     Illuminance,
+    /// `illuminate`: a RenderMan light's emission from a position.
     #[token("illuminate")]
     Illuminate,
+    /// `solar`: a RenderMan light's emission along a direction.
     #[token("solar")]
     Solar,
+    /// `gather`: parsed only to be rejected (E0403, it needs ray tracing).
     #[token("gather")]
     Gather,
+    /// `true`: a `bool` literal (1 in `#if`).
     #[token("true")]
     True,
+    /// `false`: a `bool` literal (0 in `#if`).
     #[token("false")]
     False,
 
@@ -150,96 +210,143 @@ pub enum TokenKind {
     Reserved,
 
     // Punctuation.
+    /// `{`: opens a block or a braced constructor.
     #[token("{")]
     LBrace,
+    /// `}`.
     #[token("}")]
     RBrace,
+    /// `(`.
     #[token("(")]
     LParen,
+    /// `)`.
     #[token(")")]
     RParen,
+    /// `[`: opens an array size or an index.
     #[token("[")]
     LBracket,
+    /// `]`.
     #[token("]")]
     RBracket,
+    /// `;`: ends a statement or declaration, and separates RenderMan parameter groups.
     #[token(";")]
     Semi,
+    /// `,`: separates arguments, declarators, tuple components and Stanford parameters.
     #[token(",")]
     Comma,
+    /// `.`: the dot product.
     #[token(".")]
     Dot,
+    /// `?` of the conditional `c ? a : b`.
     #[token("?")]
     Question,
+    /// `:` of the conditional `c ? a : b`.
     #[token(":")]
     Colon,
+    /// `+`, binary or unary.
     #[token("+")]
     Plus,
+    /// `-`, binary or unary.
     #[token("-")]
     Minus,
+    /// `*`.
     #[token("*")]
     Star,
+    /// `/`.
     #[token("/")]
     Slash,
+    /// `%`: the remainder of integers.
     #[token("%")]
     Percent,
+    /// `^`: the cross product of vectors or the exclusive or of integers; binds tighter than `+`.
     #[token("^")]
     Caret,
+    /// `&`: bitwise and.
     #[token("&")]
     Amp,
+    /// `|`: bitwise or.
     #[token("|")]
     Pipe,
+    /// `~`: bitwise not.
     #[token("~")]
     Tilde,
+    /// `!`: logical not.
     #[token("!")]
     Bang,
+    /// `<`.
     #[token("<")]
     Lt,
+    /// `>`.
     #[token(">")]
     Gt,
+    /// `<=`.
     #[token("<=")]
     Le,
+    /// `>=`.
     #[token(">=")]
     Ge,
+    /// `==`.
     #[token("==")]
     EqEq,
+    /// `!=`.
     #[token("!=")]
     Ne,
+    /// `&&`: logical and.
     #[token("&&")]
     AndAnd,
+    /// `||`: logical or.
     #[token("||")]
     OrOr,
+    /// `<<`: shift left.
     #[token("<<")]
     Shl,
+    /// `>>`: shift right.
     #[token(">>")]
     Shr,
+    /// `=`: assignment, and a declarator's initialiser or a parameter's default.
     #[token("=")]
     Eq,
+    /// `+=`.
     #[token("+=")]
     PlusEq,
+    /// `-=`.
     #[token("-=")]
     MinusEq,
+    /// `*=`.
     #[token("*=")]
     StarEq,
+    /// `/=`.
     #[token("/=")]
     SlashEq,
+    /// `%=`.
     #[token("%=")]
     PercentEq,
+    /// `&=`.
     #[token("&=")]
     AmpEq,
+    /// `|=`.
     #[token("|=")]
     PipeEq,
+    /// `^=`.
     #[token("^=")]
     CaretEq,
+    /// `<<=`.
     #[token("<<=")]
     ShlEq,
+    /// `>>=`.
     #[token(">>=")]
     ShrEq,
+    /// `++`, prefix or postfix.
     #[token("++")]
     PlusPlus,
+    /// `--`, prefix or postfix.
     #[token("--")]
     MinusMinus,
+    /// `#`: starts a preprocessor directive at the start of a line; in a macro body, makes a string
+    /// of a parameter's argument.
     #[token("#")]
     Hash,
+    /// `##`: in a macro body, pastes the tokens on either side into one.
     #[token("##")]
     HashHash,
 }

@@ -117,22 +117,39 @@ pub struct FunctionDef {
 /// A type name as written.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum TypeName {
+    /// `float`.
     Float,
+    /// `color` (RenderMan): three floats, an RGB colour.
     Color,
+    /// `point` (RenderMan): three floats, a position, translated by transforms.
     Point,
+    /// `vector` (RenderMan): three floats, a direction.
     Vector,
+    /// `normal` (RenderMan): three floats, transformed by the inverse transpose.
     Normal,
+    /// `matrix` (RenderMan): the 4×4 matrix, the same type as `matrix4`.
     Matrix,
+    /// `string`: a compile-time string (texture and space names).
     String,
+    /// `void`: the result type of a function that returns nothing.
     Void,
+    /// `float3` (Stanford): a plain 3-vector.
     Float3,
+    /// `float4` (Stanford): four floats, colours and homogeneous points.
     Float4,
+    /// `matrix3` (Stanford): a 3×3 matrix.
     Matrix3,
+    /// `matrix4` (Stanford): a 4×4 matrix.
     Matrix4,
+    /// `bool`.
     Bool,
+    /// `texref` (Stanford): a texture bound by the scene.
     Texref,
+    /// `clampf` (Stanford): a float kept in [0, 1].
     Clampf,
+    /// `int`: a 32-bit signed integer that wraps.
     Int,
+    /// `uint`: a 32-bit unsigned integer that wraps.
     Uint,
 }
 
@@ -299,25 +316,76 @@ pub enum StmtKind {
     /// `;`.
     Empty,
     /// `if (cond) then else otherwise`.
-    If { cond: Expr, then: Box<Stmt>, otherwise: Option<Box<Stmt>> },
+    If {
+        /// The condition, in parentheses.
+        cond: Expr,
+        /// The statement run when the condition holds.
+        then: Box<Stmt>,
+        /// The statement after `else`; `None` without an `else`.
+        otherwise: Option<Box<Stmt>>,
+    },
     /// `while (cond) body`.
-    While { cond: Expr, body: Box<Stmt> },
+    While {
+        /// The condition, tested before each iteration.
+        cond: Expr,
+        /// The loop body.
+        body: Box<Stmt>,
+    },
     /// `for (init; cond; step) body`.
-    For { init: Option<Box<Stmt>>, cond: Option<Box<Expr>>, step: Option<Box<Expr>>, body: Box<Stmt> },
+    For {
+        /// The first clause: a [`StmtKind::Decl`] or a [`StmtKind::Expr`]; `None` when empty.
+        init: Option<Box<Stmt>>,
+        /// The condition tested before each iteration; `None` when empty (loop until `break`).
+        cond: Option<Box<Expr>>,
+        /// The expression evaluated after each iteration; `None` when empty.
+        step: Option<Box<Expr>>,
+        /// The loop body.
+        body: Box<Stmt>,
+    },
     /// `break;` or `break n;` (leave n enclosing loops).
-    Break { levels: Option<u32> },
+    Break {
+        /// The `n` of `break n`, at least 1 (a smaller one is reported and read as 1); `None` for
+        /// a plain `break`.
+        levels: Option<u32>,
+    },
     /// `continue;` or `continue n;`.
-    Continue { levels: Option<u32> },
+    Continue {
+        /// The `n` of `continue n`, at least 1 (a smaller one is reported and read as 1); `None`
+        /// for a plain `continue`.
+        levels: Option<u32>,
+    },
     /// `return;` or `return value;`.
     Return(Option<Expr>),
     /// `illuminance([category,] P [, axis, angle]) body`: a loop over the lights reaching P.
-    Illuminance { args: Vec<Expr>, body: Box<Stmt> },
+    Illuminance {
+        /// The arguments as written, any number; the semantic stage checks the form.
+        args: Vec<Expr>,
+        /// The statement run for each light.
+        body: Box<Stmt>,
+    },
     /// `illuminate(from [, axis, angle]) body`: a local light's emission.
-    Illuminate { args: Vec<Expr>, body: Box<Stmt> },
+    Illuminate {
+        /// The arguments as written, any number; the semantic stage checks the form.
+        args: Vec<Expr>,
+        /// The statement that computes `Cl` for the point being lit.
+        body: Box<Stmt>,
+    },
     /// `solar([axis, angle]) body`: a distant light's emission.
-    Solar { args: Vec<Expr>, body: Box<Stmt> },
+    Solar {
+        /// The arguments as written, any number; the semantic stage checks the form.
+        args: Vec<Expr>,
+        /// The statement that computes `Cl` for the point being lit.
+        body: Box<Stmt>,
+    },
     /// `gather(...) body else otherwise`: ray tracing, parsed only to be rejected clearly.
-    Gather { args: Vec<Expr>, body: Box<Stmt>, otherwise: Option<Box<Stmt>> },
+    Gather {
+        /// The arguments as written.
+        args: Vec<Expr>,
+        /// The statement for rays that hit.
+        body: Box<Stmt>,
+        /// The statement after `else`, for rays that miss; `None` without an `else`.
+        otherwise: Option<Box<Stmt>>,
+    },
     /// A statement that did not parse; its error has been reported.
     Error,
 }
@@ -347,24 +415,41 @@ pub enum UnaryOp {
 /// Binary operators. `Caret` is cross product on vectors and xor on integers.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum BinaryOp {
+    /// `||`: logical or.
     Or,
+    /// `&&`: logical and.
     And,
+    /// `|`: bitwise or of integers.
     BitOr,
+    /// `&`: bitwise and of integers.
     BitAnd,
+    /// `==`.
     Eq,
+    /// `!=`.
     Ne,
+    /// `<`.
     Lt,
+    /// `<=`.
     Le,
+    /// `>`.
     Gt,
+    /// `>=`.
     Ge,
+    /// `<<`: shift left (integers).
     Shl,
+    /// `>>`: shift right (integers).
     Shr,
+    /// `+`.
     Add,
+    /// `-`.
     Sub,
     /// `^`: cross product of vectors, exclusive or of integers.
     Caret,
+    /// `*`.
     Mul,
+    /// `/`.
     Div,
+    /// `%`: the remainder of integers.
     Rem,
     /// `.`: dot product.
     Dot,
@@ -411,7 +496,13 @@ pub enum StepOp {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     /// An integer literal; `unsigned` when written with a `u` suffix.
-    Int { value: u32, unsigned: bool },
+    Int {
+        /// The value, up to `u32::MAX`; 0 for a malformed or too large literal, which has been
+        /// reported. Whether it is an `int` or a `uint` is for the semantic stage.
+        value: u32,
+        /// Whether the literal has a `u` or `U` suffix.
+        unsigned: bool,
+    },
     /// A float literal, as the f64 nearest to what was written.
     Float(f64),
     /// A string literal, escapes replaced.
@@ -421,26 +512,79 @@ pub enum ExprKind {
     /// A variable or constant.
     Name(Ident),
     /// A unary operation.
-    Unary { op: UnaryOp, operand: Box<Expr> },
+    Unary {
+        /// The operator.
+        op: UnaryOp,
+        /// What it applies to.
+        operand: Box<Expr>,
+    },
     /// A binary operation.
-    Binary { op: BinaryOp, lhs: Box<Expr>, rhs: Box<Expr> },
+    Binary {
+        /// The operator.
+        op: BinaryOp,
+        /// The left operand.
+        lhs: Box<Expr>,
+        /// The right operand.
+        rhs: Box<Expr>,
+    },
     /// `target = value`, or `target op= value` when `op` is given.
-    Assign { op: Option<BinaryOp>, target: Box<Expr>, value: Box<Expr> },
+    Assign {
+        /// The operator of a compound assignment (`Add` for `+=`); `None` for `=`.
+        op: Option<BinaryOp>,
+        /// What is assigned to: any expression, checked by the semantic stage.
+        target: Box<Expr>,
+        /// The right-hand side.
+        value: Box<Expr>,
+    },
     /// `++x`, `x++`, `--x`, `x--`.
-    Step { op: StepOp, prefix: bool, target: Box<Expr> },
+    Step {
+        /// Increment or decrement.
+        op: StepOp,
+        /// `true` for `++x` and `--x`, `false` for `x++` and `x--`.
+        prefix: bool,
+        /// What is stepped: any expression, checked by the semantic stage.
+        target: Box<Expr>,
+    },
     /// `cond ? then : otherwise`.
-    Conditional { cond: Box<Expr>, then: Box<Expr>, otherwise: Box<Expr> },
+    Conditional {
+        /// The condition, before `?`.
+        cond: Box<Expr>,
+        /// The value when it holds, between `?` and `:`.
+        then: Box<Expr>,
+        /// The value when it does not, after `:`.
+        otherwise: Box<Expr>,
+    },
     /// A call of a function or built-in; message passing (`surface("Kd", x)`) is a call too.
-    Call { callee: Ident, args: Vec<Expr> },
+    Call {
+        /// The name called (a shader kind's keyword for message passing), with the span of the
+        /// name only.
+        callee: Ident,
+        /// The arguments in order; empty for `f()`.
+        args: Vec<Expr>,
+    },
     /// `type [space] operand`: a conversion, a constructor (`color (1, 0, 0)`) or an overload choice
     /// (`color noise(P)`), with an optional coordinate or colour space (`point "shader" (0, 0, 0)`).
-    Cast { ty: TypeSpec, space: Option<(String, Span)>, operand: Box<Expr> },
+    Cast {
+        /// The type word.
+        ty: TypeSpec,
+        /// The space's string literal, escapes replaced, with the literal's span; `None` when no
+        /// space was written.
+        space: Option<(String, Span)>,
+        /// The value converted, or the components of the value constructed.
+        operand: Box<Expr>,
+    },
     /// RenderMan's `(a, b, c)` or sixteen-tuple.
     Tuple(Vec<Expr>),
     /// Stanford's `{a, b, c}`, also array initialisers.
     Braced(Vec<Expr>),
     /// `base[index]`.
-    Index { base: Box<Expr>, index: Box<Expr> },
+    Index {
+        /// The indexed expression (any postfix expression, also a string literal in RenderMan's
+        /// channel syntax `"map"[1]`).
+        base: Box<Expr>,
+        /// The index, between the brackets.
+        index: Box<Expr>,
+    },
     /// An expression that did not parse; its error has been reported.
     Error,
 }

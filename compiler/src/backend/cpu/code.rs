@@ -201,41 +201,197 @@ pub enum Convert {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Inst {
     /// Float `dst = op(a)`.
-    Unary { op: Unary, dst: Reg, a: Reg },
+    Unary {
+        /// The operation.
+        op: Unary,
+        /// The result (float file).
+        dst: Reg,
+        /// The operand (float file).
+        a: Reg,
+    },
     /// Float `dst = op(a, b)`.
-    Binary { op: Binary, dst: Reg, a: Reg, b: Reg },
+    Binary {
+        /// The operation.
+        op: Binary,
+        /// The result (float file).
+        dst: Reg,
+        /// The first operand (float file).
+        a: Reg,
+        /// The second operand (float file).
+        b: Reg,
+    },
     /// Float `dst = op(a, b, c)`.
-    Ternary { op: Ternary, dst: Reg, a: Reg, b: Reg, c: Reg },
+    Ternary {
+        /// The operation.
+        op: Ternary,
+        /// The result (float file).
+        dst: Reg,
+        /// The first operand (float file): `mix`'s `a`, `clamp`'s `x`, `smoothstep`'s `lo`.
+        a: Reg,
+        /// The second operand (float file): `mix`'s `b`, `clamp`'s `lo`, `smoothstep`'s `hi`.
+        b: Reg,
+        /// The third operand (float file): `mix`'s `t`, `clamp`'s `hi`, `smoothstep`'s `x`.
+        c: Reg,
+    },
     /// Integer-file `dst = a op b` of two floats (1 or 0).
-    Compare { op: Compare, dst: Reg, a: Reg, b: Reg },
+    Compare {
+        /// The comparison; any comparison with a NaN is false except `!=`.
+        op: Compare,
+        /// The result (integer file): 1 where the comparison holds, else 0.
+        dst: Reg,
+        /// The left operand (float file).
+        a: Reg,
+        /// The right operand (float file).
+        b: Reg,
+    },
     /// Integer `dst = op(a)`.
-    IntUnary { op: IntUnary, dst: Reg, a: Reg },
+    IntUnary {
+        /// The operation.
+        op: IntUnary,
+        /// The result (integer file).
+        dst: Reg,
+        /// The operand (integer file).
+        a: Reg,
+    },
     /// Integer `dst = op(a, b)`.
-    IntBinary { op: IntBinary, dst: Reg, a: Reg, b: Reg },
+    IntBinary {
+        /// The operation (its signedness chosen by the lowering).
+        op: IntBinary,
+        /// The result (integer file).
+        dst: Reg,
+        /// The first operand (integer file).
+        a: Reg,
+        /// The second operand (integer file): the divisor, or the shift amount.
+        b: Reg,
+    },
     /// `dst = a op b` of two integers (1 or 0), signed or unsigned.
-    IntCompare { op: Compare, signed: bool, dst: Reg, a: Reg, b: Reg },
+    IntCompare {
+        /// The comparison.
+        op: Compare,
+        /// Whether the operands are read as `int` (`true`) or as `uint`.
+        signed: bool,
+        /// The result (integer file): 1 where the comparison holds, else 0.
+        dst: Reg,
+        /// The left operand (integer file).
+        a: Reg,
+        /// The right operand (integer file).
+        b: Reg,
+    },
     /// A conversion between the files (or within the float file, for `FloatToBool`'s source).
-    Convert { op: Convert, dst: Reg, a: Reg },
+    Convert {
+        /// The conversion, which names the files of `dst` and `a`.
+        op: Convert,
+        /// The result: integer file for `FloatTo*`, float file for `*ToFloat`.
+        dst: Reg,
+        /// The operand: float file for `FloatTo*`, integer file for `*ToFloat`.
+        a: Reg,
+    },
     /// `dst = cond ? a : b` (`cond` in the integer file), in the float file or the integer file.
-    Select { float: bool, dst: Reg, cond: Reg, a: Reg, b: Reg },
+    Select {
+        /// Whether `dst`, `a` and `b` are in the float file (else the integer file).
+        float: bool,
+        /// The result; every lane is written, whatever the execution mask.
+        dst: Reg,
+        /// The condition (integer file): non-zero picks `a`. Never `dst` itself.
+        cond: Reg,
+        /// The value where `cond` is non-zero.
+        a: Reg,
+        /// The value where `cond` is zero.
+        b: Reg,
+    },
     /// A store into a variable: `dst = src` in the lanes of the execution mask.
-    Move { float: bool, dst: Reg, src: Reg },
+    Move {
+        /// Whether both registers are in the float file (else the integer file).
+        float: bool,
+        /// The variable's register; a uniform one is only stored under uniform control, from a
+        /// uniform `src`, and is written whole.
+        dst: Reg,
+        /// The value stored.
+        src: Reg,
+    },
     /// `dst = array[clamp(index, 0, len - 1)]`: registers `base + i * stride` for `i` in `0..len`
     /// hold the elements (of one component); `index` is an `int` (`signed`) or a `uint`.
-    Gather { float: bool, dst: Reg, base: Reg, len: u32, stride: u32, index: Reg, signed: bool },
+    Gather {
+        /// Whether `dst` and the elements are in the float file (else the integer file).
+        float: bool,
+        /// The result; uniform exactly when `base` and `index` are.
+        dst: Reg,
+        /// The register of element 0's component: every element's register is uniform or varying
+        /// as this one is.
+        base: Reg,
+        /// The number of elements.
+        len: u32,
+        /// The registers from one element to the next (the element's component count, or 1 for
+        /// an index already flattened over nested arrays).
+        stride: u32,
+        /// The element index (integer file), clamped into `0..len`; may vary per lane.
+        index: Reg,
+        /// Whether `index` is an `int` (a negative one clamps to 0) or a `uint`.
+        signed: bool,
+    },
     /// `array[clamp(index, 0, len - 1)] = src` in the lanes of the execution mask.
-    Scatter { float: bool, base: Reg, len: u32, stride: u32, index: Reg, signed: bool, src: Reg },
+    Scatter {
+        /// Whether `src` and the elements are in the float file (else the integer file).
+        float: bool,
+        /// The register of element 0's component, as in [`Inst::Gather`]. When it is uniform,
+        /// `index` and `src` are too and the store is made once, unmasked (uniform variables are
+        /// stored under uniform control only).
+        base: Reg,
+        /// The number of elements.
+        len: u32,
+        /// The registers from one element to the next, as in [`Inst::Gather`].
+        stride: u32,
+        /// The element index (integer file), clamped into `0..len`; each lane of the execution mask
+        /// stores into the element its own index names.
+        index: Reg,
+        /// Whether `index` is an `int` (a negative one clamps to 0) or a `uint`.
+        signed: bool,
+        /// The value stored.
+        src: Reg,
+    },
     /// `dst` = a uniformly distributed float in [0, 1), a hash of `point` (integer file: the
     /// point's index, unless the caller gives another) and `site`.
-    Random { dst: Reg, site: u32, point: Reg },
+    Random {
+        /// The result (float file), always varying.
+        dst: Reg,
+        /// A number distinct for each `random()` call in the program, so calls differ.
+        site: u32,
+        /// The point's index (integer file), or another value the caller hashes instead.
+        point: Reg,
+    },
     /// `dst` = channel `channel` of texel (x, y, z) of texture `texture` (coordinates in the
     /// integer file, clamped into range).
-    Texel { texture: u32, channel: u8, dst: Reg, x: Reg, y: Reg, z: Reg },
+    Texel {
+        /// The texture: an index into [`Code::textures`]; a texture the machine lacks reads as 0.
+        texture: u32,
+        /// The channel read, 0 to 3 (red, green, blue, alpha).
+        channel: u8,
+        /// The result (float file); uniform when the coordinates are.
+        dst: Reg,
+        /// The column (integer file, read as `int`), clamped into the texture.
+        x: Reg,
+        /// The row (integer file, read as `int`), clamped into the texture.
+        y: Reg,
+        /// The layer of a 3D texture (integer file, read as `int`), clamped into the texture.
+        z: Reg,
+    },
     /// `dst` (integer file, uniform) = the size of texture `texture` along `axis`.
-    TexSize { texture: u32, axis: u8, dst: Reg },
+    TexSize {
+        /// The texture: an index into [`Code::textures`]; a missing one has size 1.
+        texture: u32,
+        /// 0 for the width, 1 for the height, 2 for the depth (at least 1 each).
+        axis: u8,
+        /// The result (integer file), always uniform.
+        dst: Reg,
+    },
     /// `printf`: in each lane of the execution mask, `format` with the lane's values, one line on
     /// stderr (`exec::print_line` limits how many).
-    Printf { format: String, args: Vec<PrintArg> },
+    Printf {
+        /// The format string, with its `%` conversions.
+        format: String,
+        /// The values for the conversions, in order.
+        args: Vec<PrintArg>,
+    },
 }
 
 /// One value of a `printf`.
@@ -255,7 +411,14 @@ pub enum Node {
     /// One instruction.
     Inst(Inst),
     /// Run `then` in the lanes where `cond` (integer file) is non-zero, `otherwise` in the rest.
-    If { cond: Reg, then: Vec<Node>, otherwise: Vec<Node> },
+    If {
+        /// The condition (integer file); a branch no lane takes is skipped.
+        cond: Reg,
+        /// Run with the mask narrowed to the lanes where `cond` is non-zero.
+        then: Vec<Node>,
+        /// Run with the mask narrowed to the rest; empty without an `else`.
+        otherwise: Vec<Node>,
+    },
     /// Repeat: run `test` and leave the lanes where `cond` is zero, then `body`, then `step`.
     Loop {
         /// Computes the condition (empty with `cond: None`).

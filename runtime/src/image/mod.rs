@@ -23,11 +23,28 @@ pub struct Image {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum ImageError {
     /// The two images of a comparison differ in size (width, height).
-    SizeMismatch { a: (u32, u32), b: (u32, u32) },
+    SizeMismatch {
+        /// The first image's (width, height).
+        a: (u32, u32),
+        /// The second image's (width, height).
+        b: (u32, u32),
+    },
     /// `pixels` does not hold `width * height` pixels.
-    BadPixelCount { width: u32, height: u32, pixels: usize },
+    BadPixelCount {
+        /// The image's width.
+        width: u32,
+        /// The image's height.
+        height: u32,
+        /// The number of pixels it holds instead of `width * height`.
+        pixels: usize,
+    },
     /// Reading, decoding, encoding or writing a file failed.
-    File { path: PathBuf, message: String },
+    File {
+        /// The file read or written.
+        path: PathBuf,
+        /// What went wrong, as the I/O or PNG library put it.
+        message: String,
+    },
 }
 
 impl fmt::Display for ImageError {

@@ -52,7 +52,12 @@ pub struct Mesh {
 #[derive(Clone, Debug, PartialEq)]
 pub enum MeshError {
     /// The file could not be read or parsed; `message` says why.
-    Load { path: PathBuf, message: String },
+    Load {
+        /// The mesh file.
+        path: PathBuf,
+        /// Why it could not be read or parsed.
+        message: String,
+    },
     /// The mesh breaks an invariant of [`Mesh`] (array lengths, index range, finite values).
     Invalid(String),
 }

@@ -69,11 +69,18 @@ pub struct VertexGeometry {
     pub p_obj: Vec3,
     /// See `p_obj`.
     pub n_obj: Vec3,
+    /// The position in camera space (RenderMan's `P` and `I`; Stanford's `P`, with w = 1).
     pub p: Vec3,
+    /// The normal in camera space, by the inverse transpose and not normalized (RenderMan's `N`
+    /// and `Ng`; Stanford's `N` is it normalized).
     pub n: Vec3,
+    /// The surface parameter u (RenderMan's `u` and `s`).
     pub u: f32,
+    /// The surface parameter v (RenderMan's `v` and `t`).
     pub v: f32,
+    /// ∂P/∂u in camera space (RenderMan's `dPdu`; Stanford's `T` is it normalized).
     pub dpdu: Vec3,
+    /// ∂P/∂v in camera space (RenderMan's `dPdv`).
     pub dpdv: Vec3,
 }
 

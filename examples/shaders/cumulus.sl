@@ -51,6 +51,9 @@ float cumulus_implicit(point q)
 
 // Ebert's cumulus density at q (cloud units), and the warped point it evaluated the
 // macrostructure at (q itself where the early exit applies).
+// exponent is a gamma on the density (0.5 in the scene): a negative one makes empty space
+// infinitely dense, and a large one overflows what maxdensity scales.
+// sweep: maxdensity in [0, 1e4]; exponent in [0, 4]; blend in [0, 1] (a mix weight)
 float cumulus_density(point q; float maxdensity, exponent, blend, turbamount, frequency, octaves;
                       output point warped)
 {
@@ -77,6 +80,8 @@ float cumulus_density(point q; float maxdensity, exponent, blend, turbamount, fr
 // a back face t1 is P itself, so back faces add nothing. `steps` is the cost knob (the view march);
 // shadowsteps samples the density over shadowlength (object units) toward the sun at each sample
 // with density > 0. tosun: the direction to the sun (world space in the scene file).
+// The cost knobs over the scene's values (its references' 256 and 40 steps cost more, alike):
+// sweep: steps in [1, 64]; shadowsteps in [1, 10]; octaves in [0, 8]
 surface cumulus(float steps = 32;
                 float shadowsteps = 5;
                 float shadowlength = 0.8;

@@ -22,6 +22,8 @@ float fireball_density(point p; float frequency, amplitude, octaves)
     return fireball(p, point(0, 0, 0), 0.4, 0.2, frequency, amplitude, octaves);
 }
 
+// The cost knobs: past 65535 steps the interpreter's loop budget stops the march (docs/limits.md).
+// sweep: steps in [1, 1024]; octaves in [0, 12]
 surface
 fireball_march(float steps = 64, octaves = 5, kappa = 8, frequency = 3, amplitude = 1.5,
                extent = 1)

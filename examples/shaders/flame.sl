@@ -12,6 +12,8 @@ float rand01(uint seed)
     return float(hash(seed) & 0xffffffu) / 16777216.0;
 }
 
+// A cubic spline on [0, 1] (the caller clamps x into it).
+// sweep: x in [0, 1]
 float fastspline(float x)
 {
     float t0 = x * 2;

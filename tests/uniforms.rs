@@ -88,6 +88,9 @@ fn check_scene(path: &Path) -> usize {
         set_all(surface, |n, v| block.set(n, v).map(|_| ()));
         for (k, light) in scene.lights.iter().enumerate() {
             set_all(&light.shader, |n, v| block.set_light(k, n, v).map(|_| ()));
+            if let Some(p) = light.position {
+                block.set_light_position(k, p.to_array()).expect("a bound light");
+            }
         }
         if let Some(d) = &object.displacement {
             set_all(d, |n, v| block.set_displacement(n, v).map(|_| ()));

@@ -276,7 +276,7 @@ fn compile_writes_wgsl_that_reparses_and_an_interface() {
     assert_eq!(json["attributes"][0]["source"]["what"], "position");
     assert_eq!(json["attributes"].as_array().unwrap().len(), 2);
     assert!(wgsl.contains("@location(0) a_P: vec3<f32>") && !wgsl.contains("a_uv"), "{wgsl}");
-    assert_eq!(json["version"], 2);
+    assert_eq!(json["version"], 3);
     for name in &names {
         assert!(wgsl.contains(&format!("    {name}: ")), "the WGSL has no member {name}");
     }

@@ -88,6 +88,9 @@ fn check_scene(path: &Path) -> usize {
         set_all(surface, |n, v| block.set(n, v).map(|_| ()));
         for (k, light) in scene.lights.iter().enumerate() {
             set_all(&light.shader, |n, v| block.set_light(k, n, v).map(|_| ()));
+            if let Some(p) = light.position {
+                block.set_light_position(k, p.to_array()).expect("a bound light");
+            }
         }
         if let Some(d) = &object.displacement {
             set_all(d, |n, v| block.set_displacement(n, v).map(|_| ()));
@@ -171,4 +174,28 @@ fn setting_a_value_checks_name_type_and_binding() {
         .fix("at", [1.0, 2.0, 3.0])
         .compile_source("p.sl", "surface p(point at = 0) { Ci = color(at); }");
     assert!(matches!(fixed_point, Err(patina::CompileError::DependsOnView { .. })));
+}
+
+/// Issue 23: a Stanford-style light is placed by the host; its position is a uniform the block
+/// fills in camera space once `set_light_position` gives it (in world space), and not before.
+#[test]
+fn a_stanford_lights_position_is_set_in_world_space() {
+    let light = "light shader float4 falloff(float4 c) { return c * (1.0 / (0.5 * Sdist + 1.0)); }";
+    let surface =
+        "surface shader float4 lit() { perlight float4 c = Cl * max(dot(N, L), 0); return integrate(c); }";
+    let compiled = Compiler::new()
+        .light(Light::source("falloff.sl", light))
+        .compile_source("lit.sl", surface)
+        .expect("compiles");
+    let mut block = compiled.uniforms();
+    assert!(matches!(block.bytes(), Err(patina::UniformError::NoPosition { light: 0 })));
+    assert!(matches!(block.set_light_position(1, [0.0; 3]), Err(patina::UniformError::NoLight { .. })));
+    block.set_light_position(0, [1.0, 2.0, -3.0]).expect("light 0");
+    let bytes = block.bytes().expect("bytes");
+    let source = patina::interface::UniformSource::LightPosition { light: 0 };
+    let position = block.read(&bytes, &source).expect("a position uniform");
+    // The default view's camera looks from (0, 0, -5) at the origin: camera space is world
+    // space moved 5 along +z.
+    let expected = [1.0, 2.0, 2.0];
+    assert!(position.iter().zip(expected).all(|(p, e)| (p - e).abs() < 1e-6), "{position:?}");
 }

@@ -201,6 +201,9 @@ fn describe(source: &UniformSource) -> String {
             }
         }
         UniformSource::LightParam { light, name } => format!("parameter `{name}` of light {light}"),
+        UniformSource::LightPosition { light } => {
+            format!("the position of light {light} (a Stanford-style light), in camera space")
+        }
         UniformSource::DisplacementParam { name } => format!("parameter `{name}` of the displacement shader"),
         UniformSource::AtmosphereParam { name } => format!("parameter `{name}` of the atmosphere shader"),
         UniformSource::Geometry { matrix } => match matrix {

@@ -193,7 +193,7 @@ impl Compiler {
             warnings.extend(l.warnings);
             let binding = Binding { lights: Vec::new(), strings: l.shader.strings.clone() };
             let cpu = CpuProgram::compile(&l.shader.shader, &binding).map_err(|d| internal(d, &l.shader))?;
-            lights.push(LightProgram { loaded: l.shader, cpu, values: Vec::new() });
+            lights.push(LightProgram { loaded: l.shader, cpu, values: Vec::new(), position: None });
         }
         let displacement = match &self.displacement {
             Some(d) => {

@@ -68,6 +68,8 @@ pub struct Uniforms<'c> {
     compiled: &'c Compiled,
     surface: Vec<(String, Vec<f64>)>,
     lights: Vec<Vec<(String, Vec<f64>)>>,
+    /// Each light's position in world space, where one is set (Stanford-style lights need one).
+    light_positions: Vec<Option<Vec3>>,
     displacement: Vec<(String, Vec<f64>)>,
     view: View,
 }
@@ -104,6 +106,11 @@ pub enum UniformError {
         /// How many are bound.
         count: usize,
     },
+    /// A Stanford-style light's position was not set (`Uniforms::set_light_position`).
+    NoPosition {
+        /// The light.
+        light: usize,
+    },
     /// The host part failed (a loop past its budget, ...).
     Host(String),
 }
@@ -123,6 +130,10 @@ impl fmt::Display for UniformError {
             UniformError::NoLight { light, count } => {
                 write!(f, "there is no light {light}: {count} are bound")
             }
+            UniformError::NoPosition { light } => write!(
+                f,
+                "light {light} is a Stanford-style light: set its position with `set_light_position`"
+            ),
             UniformError::Host(why) => write!(f, "the host part failed: {why}"),
         }
     }
@@ -137,6 +148,7 @@ impl<'c> Uniforms<'c> {
             compiled,
             surface: program.loaded.params.clone(),
             lights: compiled.lights.iter().map(|l| l.loaded.params.clone()).collect(),
+            light_positions: vec![None; compiled.lights.len()],
             displacement: program.displacement.as_ref().map(|d| d.loaded.params.clone()).unwrap_or_default(),
             view: View::default(),
         }
@@ -161,6 +173,19 @@ impl<'c> Uniforms<'c> {
         let loaded = &self.compiled.lights.get(light).ok_or(UniformError::NoLight { light, count })?.loaded;
         let value = checked(&loaded.shader, &loaded.params, name, value.into(), &loaded.strings)?;
         put(&mut self.lights[light], name, value);
+        Ok(self)
+    }
+
+    /// Sets the world-space position of bound light `light`, a Stanford-style light (whose shader
+    /// computes only its colour; its `L` and `Sdist` are measured from this point).
+    pub fn set_light_position(
+        &mut self,
+        light: usize,
+        position: [f32; 3],
+    ) -> Result<&mut Self, UniformError> {
+        let count = self.compiled.lights.len();
+        let slot = self.light_positions.get_mut(light).ok_or(UniformError::NoLight { light, count })?;
+        *slot = Some(Vec3::from(position));
         Ok(self)
     }
 
@@ -237,9 +262,19 @@ impl<'c> Uniforms<'c> {
             None => Vec::new(),
         };
         let light_refs: Vec<&[(String, Vec<f64>)]> = lights.iter().map(Vec::as_slice).collect();
+        for field in &self.compiled.interface.uniforms {
+            if let UniformSource::LightPosition { light } = field.source
+                && self.light_positions.get(light).copied().flatten().is_none()
+            {
+                return Err(UniformError::NoPosition { light });
+            }
+        }
+        let light_positions: Vec<Option<Vec3>> =
+            self.light_positions.iter().map(|p| p.map(|p| world_to_camera.transform_point3(p))).collect();
         let values = HostValues {
             surface: &surface,
             lights: &light_refs,
+            light_positions: &light_positions,
             displacement: &displacement,
             atmosphere: &atmosphere,
         };

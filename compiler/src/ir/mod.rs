@@ -370,7 +370,9 @@ impl Shader {
     }
 }
 
-/// Whether a light shader is ambient: it has no `illuminate` or `solar` (RenderMan's rule).
+/// Whether a light shader is ambient: a RenderMan-style light with no `illuminate` or `solar`
+/// (RenderMan's rule). A Stanford-style light is never ambient: it has a position (the scene's),
+/// and its `L` points to it.
 pub fn is_ambient(light: &Shader) -> bool {
     fn emits(block: &[Stmt]) -> bool {
         block.iter().any(|s| match s {
@@ -381,7 +383,7 @@ pub fn is_ambient(light: &Shader) -> bool {
             _ => false,
         })
     }
-    !emits(&light.body)
+    !light.stanford && !emits(&light.body)
 }
 
 /// The checked program: every shader of a source file.

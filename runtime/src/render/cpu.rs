@@ -9,10 +9,12 @@ use patina_compiler::backend::cpu::{
     CpuProgram, Evaluator, POINT_INDEX, lightsource_input, surface_flag_input, surface_input,
 };
 use patina_compiler::backend::wgsl::interface::Output;
+use patina_compiler::sema::globals;
 use patina_compiler::split::StageKind;
+use patina_compiler::syntax::ast::ShaderKind;
 
 use super::frame::{Frame, VertexGeometry};
-use super::program::{SurfaceProgram, set_globals, set_spaces};
+use super::program::{LightProgram, SurfaceProgram, set_globals, set_spaces};
 use super::{Object, Prepared, Progress, RenderError, Unit};
 use crate::image::Image;
 use std::sync::Mutex;
@@ -247,6 +249,8 @@ impl<'a> Shaders<'a> {
                 // A light's lookups (shadow maps) read the textures loaded for the surface it lights.
                 bind_textures(&mut e, &l.cpu, object);
                 set_spaces(&mut e, &l.cpu, &frame.light_spaces);
+                // A Stanford light's matrices are the object's, since it runs at its points.
+                set_globals(&mut e, &l.cpu, frame);
                 for (name, value) in &l.values {
                     let _ = e.set(name, value);
                 }
@@ -423,13 +427,7 @@ fn shade_batch(
         for (name, value) in &d.values {
             let _ = e.set(name, value);
         }
-        let inputs: Vec<(&str, &[f64])> = columns
-            .iter()
-            .filter(|(name, _)| {
-                d.cpu.slot(name).is_some_and(|id| d.cpu.slots().any(|(i, s)| i == id && !s.uniform))
-            })
-            .map(|(name, c)| (name.as_str(), c.as_slice()))
-            .collect();
+        let inputs = varying_inputs(&d.cpu, &columns);
         let outputs: Vec<&str> = ["P", "N"].into_iter().filter(|name| d.cpu.slot(name).is_some()).collect();
         let moved = e.eval_points(n, &inputs, &outputs).map_err(|e| RenderError::Compile(e.to_string()))?;
         for (name, value) in outputs.into_iter().zip(moved) {
@@ -440,95 +438,9 @@ fn shade_batch(
         }
     }
     // The lights, at the surface point.
-    let p = get(&columns, "P").unwrap_or_else(|| vec![0.0; n * if stanford { 4 } else { 3 }]);
-    let p3: Vec<f64> = if stanford { (0..n).flat_map(|k| p[k * 4..k * 4 + 3].to_vec()).collect() } else { p };
-    let nn = get(&columns, "N").unwrap_or_else(|| vec![0.0; n * 3]);
-    let e = get(&columns, "E");
-    for (k, light) in lights.iter_mut().enumerate() {
-        let lp = &prepared.lights[k].cpu;
-        // The surface's parameters the light reads with `surface`: as the fragment stage reads
-        // them (a varying column, or the uniform value).
-        let messages: Vec<(String, Vec<f64>)> = surface_messages(lp, surface)
-            .into_iter()
-            .map(|(name, width, has)| {
-                let column = match get(&columns, &name) {
-                    Some(c) if has => c,
-                    _ => uniform_column(surface, &name, width, n),
-                };
-                (surface_input(&name), column)
-            })
-            .collect();
-        let inputs: Vec<(&str, &[f64])> = [("Ps", &p3), ("P", &p3), ("N", &nn)]
-            .into_iter()
-            .map(|(name, v)| (name, v.as_slice()))
-            .chain(messages.iter().map(|(name, c)| (name.as_str(), c.as_slice())))
-            .filter(|(name, _)| {
-                lp.slot(name).is_some_and(|id| lp.slots().any(|(i, s)| i == id && !s.uniform))
-            })
-            .collect();
-        // A light that never sets `L` (an ambient light without `solar` or `illuminate`) leaves
-        // it zero, as on the GPU.
-        let has_l = lp.slot("L").is_some();
-        // The light's parameters the surface reads with `lightsource`: from the light's program
-        // after it ran when it has them as variables, else their bound values.
-        let messages: Vec<(String, &str)> = prepared.lights[k]
-            .loaded
-            .shader
-            .params
-            .iter()
-            .map(|p| prepared.lights[k].loaded.shader.local(*p).name.as_str())
-            .map(|name| (lightsource_input(name, k), name))
-            .filter(|(input, _)| program.slot(input).is_some())
-            .collect();
-        let read_back: Vec<&str> =
-            messages.iter().map(|(_, name)| *name).filter(|name| lp.slot(name).is_some()).collect();
-        let wanted: Vec<&str> = if has_l { vec!["L", "Cl"] } else { vec!["Cl"] }
-            .into_iter()
-            .chain(read_back.iter().copied())
-            .collect();
-        let mut outs =
-            light.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
-        if !has_l {
-            outs.insert(0, vec![0.0; n * 3]);
-        }
-        for (input, name) in &messages {
-            let column = match read_back.iter().position(|r| r == name) {
-                Some(at) => outs[2 + at].clone(),
-                None => broadcast(&prepared.lights[k].values, name, n).unwrap_or_default(),
-            };
-            columns.push((input.clone(), column));
-        }
-        let (mut l, cl) = (outs[0].clone(), outs[1].clone());
-        for x in &mut l {
-            *x = -*x;
-        }
-        if stanford {
-            let mut h = vec![0f64; n * 3];
-            for i in 0..n {
-                let lv = Vec3::new(l[i * 3] as f32, l[i * 3 + 1] as f32, l[i * 3 + 2] as f32);
-                let lv = lv / lv.length();
-                l[i * 3..i * 3 + 3].copy_from_slice(&[f64::from(lv.x), f64::from(lv.y), f64::from(lv.z)]);
-                if let Some(e) = &e {
-                    let ev = Vec3::new(e[i * 3] as f32, e[i * 3 + 1] as f32, e[i * 3 + 2] as f32);
-                    let hv = (lv + ev) / (lv + ev).length();
-                    h[i * 3..i * 3 + 3].copy_from_slice(&[f64::from(hv.x), f64::from(hv.y), f64::from(hv.z)]);
-                }
-            }
-            columns.push((format!("H[{k}]"), h));
-            let cl4: Vec<f64> = (0..n).flat_map(|i| [cl[i * 3], cl[i * 3 + 1], cl[i * 3 + 2], 1.0]).collect();
-            columns.push((format!("Cl[{k}]"), cl4));
-        } else {
-            columns.push((format!("Cl[{k}]"), cl));
-        }
-        columns.push((format!("L[{k}]"), l));
-    }
-    let inputs: Vec<(&str, &[f64])> = columns
-        .iter()
-        .filter(|(name, _)| {
-            program.slot(name).is_some_and(|id| program.slots().any(|(i, s)| i == id && !s.uniform))
-        })
-        .map(|(name, c)| (name.as_str(), c.as_slice()))
-        .collect();
+    let lit = light_columns(&columns, n, lights, prepared, surface)?;
+    columns.extend(lit);
+    let inputs = varying_inputs(program, &columns);
     let wanted: Vec<&str> = match output {
         Output::Result => vec!["result"],
         // With an atmosphere the interface's output is Ci and Oi whatever the surface writes.
@@ -612,6 +524,253 @@ fn shade_batch(
         };
     }
     Ok(())
+}
+
+/// The surface point the lights are evaluated at, one column per value, point-major: `P` as a
+/// 3-vector in either style, the surface's own columns (`N`, `E`, Stanford's `Pobj`, ...).
+struct SurfacePoint<'c> {
+    n: usize,
+    p: Vec<f64>,
+    columns: &'c [(String, Vec<f64>)],
+    stanford: bool,
+}
+
+impl<'c> SurfacePoint<'c> {
+    /// The surface point of `n` points given by `columns`, of a surface of the given style.
+    fn new(n: usize, columns: &'c [(String, Vec<f64>)], stanford: bool) -> Self {
+        let mut point = SurfacePoint { n, p: Vec::new(), columns, stanford };
+        point.p = match point.column("P") {
+            // Stanford's P is a float4 with w = 1.
+            Some(p) if stanford => p.chunks(4).flat_map(|xyzw| xyzw[..3].to_vec()).collect(),
+            Some(p) => p.to_vec(),
+            None => vec![0.0; n * 3],
+        };
+        point
+    }
+
+    /// The surface's column `name`, if it has one.
+    fn column(&self, name: &str) -> Option<&[f64]> {
+        self.columns.iter().find(|(c, _)| c == name).map(|(_, c)| c.as_slice())
+    }
+
+    /// A surface column, or zeros of `width` when the surface has none.
+    fn column_or_zero(&self, name: &str, width: usize) -> Vec<f64> {
+        self.column(name).map_or_else(|| vec![0.0; self.n * width], <[f64]>::to_vec)
+    }
+}
+
+/// What a light delivers to the surface, per point: the vector from the point towards the light
+/// (not normalized; RenderMan's `-L`), its colour (a RenderMan light's `Cl`, three wide; a
+/// Stanford light's returned float4, four wide), and its variables the surface reads with
+/// `lightsource`, in the order asked for.
+struct Arrival {
+    toward: Vec<f64>,
+    cl: Vec<f64>,
+    read_back: Vec<Vec<f64>>,
+}
+
+/// Runs each bound light's program at the surface point and returns the columns the surface
+/// reads of them: `L[k]`, `Cl[k]` (and a Stanford surface's `H[k]`) in the surface's style, and
+/// `lightsource(name)[k]`. The WGSL backend's fragment entry point computes the same
+/// (`entry/fragment.rs`, "The lights, evaluated at the surface point").
+fn light_columns(
+    columns: &[(String, Vec<f64>)],
+    n: usize,
+    lights: &mut [Evaluator<f32>],
+    prepared: &Prepared,
+    surface: &SurfaceProgram,
+) -> Result<Vec<(String, Vec<f64>)>, RenderError> {
+    let stanford = surface.stages.fragment.stanford;
+    let program = &surface.fragment;
+    let point = SurfacePoint::new(n, columns, stanford);
+    let mut out = Vec::new();
+    for (k, light) in lights.iter_mut().enumerate() {
+        let lp = &prepared.lights[k];
+        // The surface's parameters the light reads with `surface`: as the fragment stage reads
+        // them (a varying column, or the uniform value).
+        let messages: Vec<(String, Vec<f64>)> = surface_messages(&lp.cpu, surface)
+            .into_iter()
+            .map(|(name, width, has)| {
+                let column = match point.column(&name) {
+                    Some(c) if has => c.to_vec(),
+                    _ => uniform_column(surface, &name, width, n),
+                };
+                (surface_input(&name), column)
+            })
+            .collect();
+        // The light's parameters the surface reads with `lightsource`: from the light's program
+        // after it ran when it has them as variables, else their bound values.
+        let lightsource: Vec<(String, &str)> = lp
+            .loaded
+            .shader
+            .params
+            .iter()
+            .map(|p| lp.loaded.shader.local(*p).name.as_str())
+            .map(|name| (lightsource_input(name, k), name))
+            .filter(|(input, _)| program.slot(input).is_some())
+            .collect();
+        let read_back: Vec<&str> =
+            lightsource.iter().map(|(_, name)| *name).filter(|name| lp.cpu.slot(name).is_some()).collect();
+        let arrival = if lp.loaded.shader.stanford {
+            stanford_light(light, lp, k, &point, &messages, &read_back)?
+        } else {
+            renderman_light(light, lp, &point, &messages, &read_back)?
+        };
+        for (input, name) in &lightsource {
+            let column = match read_back.iter().position(|r| r == name) {
+                Some(at) => arrival.read_back[at].clone(),
+                None => broadcast(&lp.values, name, n).unwrap_or_default(),
+            };
+            out.push((input.clone(), column));
+        }
+        out.extend(surface_light_values(k, lp.loaded.shader.stanford, arrival, &point));
+    }
+    Ok(out)
+}
+
+/// The columns among `offered` that `program` takes per point: those named like its varying slots.
+fn varying_inputs<'v>(program: &CpuProgram, offered: &'v [(String, Vec<f64>)]) -> Vec<(&'v str, &'v [f64])> {
+    offered
+        .iter()
+        .filter(|(name, _)| {
+            program.slot(name).is_some_and(|id| program.slots().any(|(i, s)| i == id && !s.uniform))
+        })
+        .map(|(name, c)| (name.as_str(), c.as_slice()))
+        .collect()
+}
+
+/// Runs a RenderMan-style light at the surface point (`Ps` = `P`) and reads what it emitted.
+fn renderman_light(
+    light: &mut Evaluator<f32>,
+    lp: &LightProgram,
+    point: &SurfacePoint,
+    messages: &[(String, Vec<f64>)],
+    read_back: &[&str],
+) -> Result<Arrival, RenderError> {
+    let n = point.n;
+    let nn = point.column_or_zero("N", 3);
+    let mut offered: Vec<(String, Vec<f64>)> =
+        vec![("Ps".into(), point.p.clone()), ("P".into(), point.p.clone()), ("N".into(), nn)];
+    offered.extend_from_slice(messages);
+    // A light that never sets `L` (an ambient light without `solar` or `illuminate`) leaves
+    // it zero, as on the GPU.
+    let has_l = lp.cpu.slot("L").is_some();
+    let wanted: Vec<&str> = if has_l { vec!["L", "Cl"] } else { vec!["Cl"] }
+        .into_iter()
+        .chain(read_back.iter().copied())
+        .collect();
+    let mut outs = light
+        .eval_points(n, &varying_inputs(&lp.cpu, &offered), &wanted)
+        .map_err(|e| RenderError::Compile(e.to_string()))?;
+    if !has_l {
+        outs.insert(0, vec![0.0; n * 3]);
+    }
+    let read_back = outs.split_off(2);
+    let cl = outs.pop().unwrap_or_default();
+    // The light's L runs from the light to the point.
+    let toward = outs.pop().unwrap_or_default().iter().map(|x| -x).collect();
+    Ok(Arrival { toward, cl, read_back })
+}
+
+/// Runs Stanford-style light `k` at the surface point and reads the colour it returned: its `L`
+/// (towards the light, normalized) and `Sdist` come from the light's position, its other inputs
+/// from the surface (a Stanford surface's own columns; a RenderMan surface's `P` with w = 1, `N`
+/// normalized and `E` = normalize(-P)).
+fn stanford_light(
+    light: &mut Evaluator<f32>,
+    lp: &LightProgram,
+    k: usize,
+    point: &SurfacePoint,
+    messages: &[(String, Vec<f64>)],
+    read_back: &[&str],
+) -> Result<Arrival, RenderError> {
+    let n = point.n;
+    let position = lp.position.ok_or_else(|| {
+        RenderError::Compile(format!("internal error: Stanford-style light {k} has no position"))
+    })?;
+    let (mut toward, mut l, mut sdist) = (Vec::with_capacity(n * 3), Vec::with_capacity(n * 3), Vec::new());
+    for i in 0..n {
+        let v = position - vec3(&point.p, i);
+        let d = v.length();
+        push3(&mut toward, v);
+        push3(&mut l, v / d);
+        sdist.push(f64::from(d));
+    }
+    let mut offered: Vec<(String, Vec<f64>)> = vec![("L".into(), l), ("Sdist".into(), sdist)];
+    if point.stanford {
+        // The surface's inputs of the names of the light's own predefined variables (not its
+        // derivative seeds, which no light is given on either backend).
+        let light_input = |name: &str| {
+            !matches!(name, "L" | "Sdist") && globals::lookup(name, ShaderKind::Light, true).is_some()
+        };
+        offered.extend(point.columns.iter().filter(|(name, _)| light_input(name)).cloned());
+    } else {
+        let nn = point.column_or_zero("N", 3);
+        let (mut p4, mut unit_n, mut e) = (Vec::with_capacity(n * 4), Vec::new(), Vec::new());
+        for i in 0..n {
+            let p = vec3(&point.p, i);
+            p4.extend([p.x, p.y, p.z, 1.0].map(f64::from));
+            let nv = vec3(&nn, i);
+            push3(&mut unit_n, nv / nv.length());
+            push3(&mut e, -p / (-p).length());
+        }
+        offered.extend([("P".into(), p4), ("N".into(), unit_n), ("E".into(), e)]);
+    }
+    offered.extend_from_slice(messages);
+    let wanted: Vec<&str> = std::iter::once("result").chain(read_back.iter().copied()).collect();
+    let mut outs = light
+        .eval_points(n, &varying_inputs(&lp.cpu, &offered), &wanted)
+        .map_err(|e| RenderError::Compile(e.to_string()))?;
+    let read_back = outs.split_off(1);
+    let cl = outs.pop().unwrap_or_default();
+    Ok(Arrival { toward, cl, read_back })
+}
+
+/// Light `k`'s values in the surface's style: a RenderMan surface sees `L` from the point towards
+/// the light (not normalized) and `Cl` as a colour (a Stanford light's rgb); a Stanford surface
+/// sees `L` normalized, the half-angle vector `H` of `L` and `E`, and `Cl` as a float4 (a
+/// RenderMan light's colour with alpha 1).
+fn surface_light_values(
+    k: usize,
+    light_stanford: bool,
+    arrival: Arrival,
+    point: &SurfacePoint,
+) -> Vec<(String, Vec<f64>)> {
+    let n = point.n;
+    let Arrival { toward, cl, .. } = arrival;
+    if !point.stanford {
+        let cl =
+            if light_stanford { (0..n).flat_map(|i| cl[i * 4..i * 4 + 3].to_vec()).collect() } else { cl };
+        return vec![(format!("Cl[{k}]"), cl), (format!("L[{k}]"), toward)];
+    }
+    let e = point.column("E");
+    let (mut l, mut h) = (Vec::with_capacity(n * 3), vec![0f64; n * 3]);
+    for i in 0..n {
+        let lv = vec3(&toward, i);
+        let lv = lv / lv.length();
+        push3(&mut l, lv);
+        if let Some(e) = e {
+            let sum = lv + vec3(e, i);
+            let hv = sum / sum.length();
+            h[i * 3..i * 3 + 3].copy_from_slice(&hv.to_array().map(f64::from));
+        }
+    }
+    let cl = if light_stanford {
+        cl
+    } else {
+        (0..n).flat_map(|i| [cl[i * 3], cl[i * 3 + 1], cl[i * 3 + 2], 1.0]).collect()
+    };
+    vec![(format!("H[{k}]"), h), (format!("Cl[{k}]"), cl), (format!("L[{k}]"), l)]
+}
+
+/// Point `i` of a column of 3-vectors, as the f32 values the interpreter holds.
+fn vec3(column: &[f64], i: usize) -> Vec3 {
+    Vec3::new(column[i * 3] as f32, column[i * 3 + 1] as f32, column[i * 3 + 2] as f32)
+}
+
+/// Appends a 3-vector to a point-major column.
+fn push3(column: &mut Vec<f64>, v: Vec3) {
+    column.extend(v.to_array().map(f64::from));
 }
 
 /// The object's `Cs` or `Os` (per-point inputs of the interpreter, uniforms on the GPU).

@@ -141,6 +141,8 @@ pub struct HostValues<'a> {
     pub surface: &'a [(String, Vec<f64>)],
     /// Each light's, by name.
     pub lights: &'a [&'a [(String, Vec<f64>)]],
+    /// Each light's position in camera space: a Stanford-style light's; `None` for the others.
+    pub light_positions: &'a [Option<Vec3>],
     /// The displacement shader's, by name (empty without one).
     pub displacement: &'a [(String, Vec<f64>)],
     /// The atmosphere shader's, by name (empty without one).
@@ -178,6 +180,13 @@ pub fn uniform_value(
             .get(*light)
             .and_then(|l| find(l, name))
             .ok_or_else(|| missing(format!("light {light} `{name}`")))?,
+        UniformSource::LightPosition { light } => values
+            .light_positions
+            .get(*light)
+            .copied()
+            .flatten()
+            .map(|p| f64s(&p.to_array()))
+            .ok_or_else(|| missing(format!("light {light}'s position")))?,
         UniformSource::DisplacementParam { name } => {
             find(values.displacement, name).ok_or_else(|| missing(format!("displacement `{name}`")))?
         }
@@ -241,9 +250,11 @@ pub fn program_uniform_bytes(
     frame: &Frame,
 ) -> Result<Vec<u8>, RenderError> {
     let light_values: Vec<&[(String, Vec<f64>)]> = lights.iter().map(|l| l.values.as_slice()).collect();
+    let light_positions: Vec<Option<Vec3>> = lights.iter().map(|l| l.position).collect();
     let values = HostValues {
         surface: &surface.uniforms,
         lights: &light_values,
+        light_positions: &light_positions,
         displacement: surface.displacement.as_ref().map_or(&[], |d| d.values.as_slice()),
         atmosphere: surface.atmosphere.as_ref().map_or(&[], |a| a.values.as_slice()),
     };

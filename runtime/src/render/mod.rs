@@ -153,9 +153,9 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
     let light_spaces = program::light_spaces(&world_spaces);
     let mut lights = Vec::new();
     let mut light_keys = Vec::new();
-    for light in &scene.lights {
+    for (i, light) in scene.lights.iter().enumerate() {
         let key = cache::light_key(&light.shader, specialize);
-        let program = match cache.light(&key) {
+        let mut program = match cache.light(&key) {
             Some(cached) => program::rebind_light(cached, &light.shader, world_to_camera, &light_spaces)?,
             None => {
                 let loaded = program::load(&light.shader, ShaderKind::Light, world_to_camera, specialize)?;
@@ -164,6 +164,7 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
                 p
             }
         };
+        program.position = light_position(scene, i, &program.loaded.shader, world_to_camera)?;
         lights.push(program);
         light_keys.push(key);
     }
@@ -270,6 +271,32 @@ pub fn prepare_cached(scene: &Scene, options: Options, cache: &mut Cache) -> Res
         None => None,
     };
     Ok(Prepared { lights, objects, background, width, height, supersample: n, imager })
+}
+
+/// Light `i`'s position in camera space: a Stanford-style light shader computes only its colour,
+/// so the scene places it (`position`, required); a RenderMan-style light is placed by its
+/// parameters (`from`), so a `position` beside them is refused rather than ignored.
+fn light_position(
+    scene: &Scene,
+    i: usize,
+    shader: &patina_compiler::ir::Shader,
+    world_to_camera: Mat4,
+) -> Result<Option<glam::Vec3>, RenderError> {
+    let light = &scene.lights[i];
+    let at = format!("{}:{}: light[{i}]", scene.file.display(), light.line);
+    let name = &shader.name;
+    match (shader.stanford, light.position) {
+        (true, Some(p)) => Ok(Some(world_to_camera.transform_point3(p))),
+        (false, None) => Ok(None),
+        (true, None) => Err(RenderError::Input(format!(
+            "{at}: `{name}` is a Stanford-style light shader, which the scene places: add its \
+             world-space position, e.g. `position = [0, 2, -3]`"
+        ))),
+        (false, Some(_)) => Err(RenderError::Input(format!(
+            "{at}.position: `{name}` is a RenderMan-style light shader, which takes its position \
+             from its parameters (e.g. `from`): remove `position`"
+        ))),
+    }
 }
 
 /// Renders a prepared scene on a backend (the GPU one needs `gpu`), downsampled to the scene's

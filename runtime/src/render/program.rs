@@ -274,6 +274,9 @@ pub struct LightProgram {
     pub cpu: CpuProgram,
     /// Its parameter values after defaults, by name.
     pub values: Vec<(String, Vec<f64>)>,
+    /// Where a Stanford-style light is, in camera space (the scene's `position`, which
+    /// [`super::prepare`] sets); `None` for a RenderMan-style light, which its parameters place.
+    pub position: Option<Vec3>,
 }
 
 /// A displacement shader bound to an object, ready for the CPU (the GPU module includes it).
@@ -316,7 +319,7 @@ pub fn light_program(loaded: LoadedShader, spaces: &[(String, Mat4)]) -> Result<
     let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
     let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
     let values = evaluate_params(&cpu, &loaded.params, spaces, None, &[])?;
-    Ok(LightProgram { loaded, cpu, values })
+    Ok(LightProgram { loaded, cpu, values, position: None })
 }
 
 /// The interpreter's bindings for the lights.

@@ -2,7 +2,7 @@
 //! field, and paths resolved against the scene's directory.
 
 use super::error::{Field, Locator, SceneError, field};
-use super::schema::{RawCamera, RawCompare, RawObject, RawOutput, RawScene, RawShader};
+use super::schema::{RawCamera, RawCompare, RawLight, RawObject, RawOutput, RawScene, RawShader};
 use super::value::{RawMesh, TransformStep};
 use super::{Compare, DEFAULT_DETAIL, Light, MeshSource, Object, Output, Scene, ShaderRef};
 use crate::camera::Camera;
@@ -15,10 +15,7 @@ pub(super) fn build(raw: RawScene, loc: &Locator, file: &Path, base: &Path) -> R
     let output = output(&raw.output, loc)?;
     let camera = camera(&raw.camera, loc)?;
     let lights = (raw.light.iter().enumerate())
-        .map(|(i, light)| {
-            let at = field(&["light"]).index(i);
-            Ok(Light { shader: shader(light, &at, loc, base)?, line: line(loc, &at) })
-        })
+        .map(|(i, light)| self::light(light, &field(&["light"]).index(i), loc, base))
         .collect::<Result<Vec<_>, SceneError>>()?;
     let atmosphere =
         raw.atmosphere.as_ref().map(|a| shader(a, &field(&["atmosphere"]), loc, base)).transpose()?;
@@ -192,6 +189,12 @@ fn shader_parts(
         animate: animate.to_vec(),
         include_dirs: Vec::new(),
     })
+}
+
+fn light(raw: &RawLight, at: &Field, loc: &Locator, base: &Path) -> Result<Light, SceneError> {
+    let shader = shader_parts(&raw.shader, &raw.name, &raw.params, &raw.animate, at, loc, base)?;
+    let position = raw.position.as_ref().map(|p| finite(p, &at.key("position"), loc)).transpose()?;
+    Ok(Light { shader, position, line: line(loc, at) })
 }
 
 fn object(raw: &RawObject, at: &Field, loc: &Locator, base: &Path) -> Result<Object, SceneError> {

@@ -26,6 +26,13 @@
 //! name = "spotlight"                     # which shader of the file (optional if it has one light)
 //! params = { intensity = 20.0, from = [2, 3, -4], to = [0, 0, 0], lightcolor = [1.0, 0.9, 0.8] }
 //!
+//! [[light]]                    # a Stanford-style light shader: its shader computes the colour,
+//! shader = "../shaders/aniso.sl"         # the scene places it
+//! name = "falloff_light"
+//! params = { lightcolor = [1, 1, 1, 1], constant_term = 1, linear_term = 0.1 }
+//! position = [2, 3, -4]        # world space; required for a Stanford-style light, refused for a
+//!                              # RenderMan-style one (its parameters place it, e.g. `from`)
+//!
 //! [[object]]                   # any number of objects
 //! mesh = "sphere"              # sphere | torus | plane | cube | teapot, or { obj = "model.obj" }
 //! detail = 64                  # tessellation, 1..=1024 (default 64; see MeshSource::build)
@@ -130,7 +137,7 @@ use crate::camera::Camera;
 use crate::image::Thresholds;
 use crate::mesh::{Mesh, MeshError};
 use error::Locator;
-use glam::Mat4;
+use glam::{Mat4, Vec3};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -205,6 +212,10 @@ pub struct ShaderRef {
 pub struct Light {
     /// The light shader.
     pub shader: ShaderRef,
+    /// Where a Stanford-style light is, in world space (its shader computes only the colour; the
+    /// host places it, as OpenGL's light position does). A RenderMan-style light has none: its
+    /// parameters place it (`from`). Rendering checks that the shader's style agrees.
+    pub position: Option<Vec3>,
     /// The line of its `[[light]]` header, for later messages about it.
     pub line: usize,
 }

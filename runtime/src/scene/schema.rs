@@ -14,7 +14,7 @@ pub(crate) struct RawScene {
     pub output: RawOutput,
     pub camera: RawCamera,
     #[serde(default)]
-    pub light: Vec<RawShader>,
+    pub light: Vec<RawLight>,
     #[serde(default)]
     pub object: Vec<RawObject>,
     #[serde(default)]
@@ -84,6 +84,19 @@ pub(crate) struct RawShader {
     pub params: BTreeMap<String, ParamValue>,
     #[serde(default)]
     pub animate: Vec<String>,
+}
+
+/// A `[[light]]`: its shader, and the position of a Stanford-style light (world space).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLight {
+    pub shader: String,
+    pub name: Option<String>,
+    #[serde(default)]
+    pub params: BTreeMap<String, ParamValue>,
+    #[serde(default)]
+    pub animate: Vec<String>,
+    pub position: Option<[f32; 3]>,
 }
 
 #[derive(Deserialize)]

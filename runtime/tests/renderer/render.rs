@@ -553,6 +553,95 @@ fn lights_and_atmospheres_read_their_surface_by_message_passing_on_both_backends
     assert_eq!(over_plain.pixels, plain.pixels);
 }
 
+/// The falloff light of W. R. Mark's chapter (`examples/shaders/aniso.sl`: a Stanford-style light
+/// shader returns only its colour) and a Stanford surface summing its lights with `integrate`.
+const FALLOFF: &str = r#"
+light shader float4
+falloff_light(float4 lightcolor, float constant_term, float linear_term)
+{
+    return lightcolor * (1.0 / (linear_term * Sdist + constant_term));
+}
+
+surface shader float4
+lit(primitive group float4 base)
+{
+    perlight float4 c = Cl * max(dot(N, L), 0);
+    float4 r = base * integrate(c);
+    r[3] = 1;
+    return r;
+}
+"#;
+
+/// Issue 23: a Stanford-style light shader could not be bound (the WGSL backend refused it, and
+/// the renderer compiles the module for either backend). Placed by the scene's `position`, the
+/// falloff light lights a Stanford surface (`L` normalized, `Cl` its float4) and RenderMan's matte
+/// (`L` towards the light, `Cl` its rgb) alike on both backends: at the sphere's point nearest
+/// the light, where N.L = 1, each is the surface colour times the light's colour / (linear Sdist
+/// + constant); facing away it is black; and beside a RenderMan point light the two add up.
+#[test]
+fn stanford_lights_light_both_styles_of_surface_on_both_backends() {
+    const SIZE: u32 = 48;
+    let position = glam::Vec3::new(2.0, 2.0, -2.5);
+    let falloff = "[[light]]\nshader = \"falloff.sl\"\nname = \"falloff_light\"\n\
+                   params = { lightcolor = [1.0, 0.9, 0.8, 1.0], constant_term = 1.0, linear_term = 0.5 }\n\
+                   position = [2.0, 2.0, -2.5]\n";
+    let point = "[[light]]\nshader = \"<shaders.sl>\"\nname = \"pointlight\"\n\
+                 params = { intensity = 6.0, from = [-2.0, 1.0, -3.0] }\n";
+    let surfaces = [
+        (
+            "a Stanford surface",
+            "shader = \"falloff.sl\"\nname = \"lit\"\nparams = { base = [0.8, 0.5, 0.3, 1.0] }\n",
+        ),
+        (
+            "RenderMan's matte",
+            "shader = \"<shaders.sl>\"\nname = \"matte\"\nparams = { Ka = 0.0 }\ncolor = [0.8, 0.5, 0.3]\n",
+        ),
+    ];
+    let scene = |lights: &str, surface: &str| {
+        let text = format!(
+            "[output]\nwidth = {SIZE}\nheight = {SIZE}\n\
+             [camera]\nfrom = [0.0, 0.0, -3.0]\nto = [0.0, 0.0, 0.0]\nfov = 45\n\
+             {lights}[[object]]\nmesh = \"sphere\"\n{surface}"
+        );
+        written_scene("falloff", FALLOFF, &text)
+    };
+    // The pixels of two points of the unit sphere facing the camera: the one nearest the light
+    // (where N and L are the same direction) and one facing away from it.
+    let camera = scene(falloff, surfaces[0].1).camera();
+    let raster = camera.camera_to_raster(SIZE, SIZE) * camera.world_to_camera();
+    let pixel = |p: glam::Vec3| {
+        let r = raster.project_point3(p);
+        (r.y as u32 * SIZE + r.x as u32) as usize
+    };
+    let nearest = position.normalize();
+    let (toward, away) = (pixel(nearest), pixel(glam::Vec3::new(-0.5, -0.5, -0.7).normalize()));
+    let sdist = position.length() - 1.0;
+    let f = 1.0 / (0.5 * sdist + 1.0);
+    let expected = [0.8 * f, 0.5 * 0.9 * f, 0.3 * 0.8 * f];
+    let gpu = patina_runtime::gpu::for_tests();
+    for (style, surface) in surfaces {
+        let render = |lights: &str, label: &str| {
+            let label = format!("{style} under {label}");
+            cpu_checked_against_gpu(&label, &scene(lights, surface), gpu, Thresholds::default())
+        };
+        let stanford = render(falloff, "the falloff light");
+        let got = stanford.pixels[toward];
+        for c in 0..3 {
+            // The pixel's centre is a little off the nearest point, on a tessellated sphere.
+            assert!((got[c] - expected[c]).abs() < 0.01 * expected[c], "{style}: {got:?}, not {expected:?}");
+        }
+        assert_eq!(stanford.pixels[away][..3], [0.0; 3], "{style}: lit from behind");
+        let renderman = render(point, "a point light");
+        let both = render(&format!("{falloff}{point}"), "both lights");
+        for ((s, r), b) in stanford.pixels.iter().zip(&renderman.pixels).zip(&both.pixels) {
+            for c in 0..3 {
+                assert!((s[c] + r[c] - b[c]).abs() < 1e-5, "{style}: {s:?} + {r:?} is not {b:?}");
+            }
+        }
+        assert!(renderman.pixels[away][0] > 0.05, "{style}: the point light lights the far side");
+    }
+}
+
 /// Issue 24: `PI` read by a displacement or a light shader bound to a surface that does not read
 /// it was 0 on the GPU (its variable was set only for the surface), so a `threads.sl`-like
 /// displacement left a plain sphere there. The constant predefined variables are values in every

@@ -446,7 +446,9 @@ fn the_documented_example_is_a_valid_scene() {
     let end = start + doc[start..].iter().position(|l| *l == "```").unwrap();
     let text = doc[start..end].join("\n");
     let scene = Scene::parse(&text, "module documentation", ".").unwrap();
-    assert_eq!((scene.lights.len(), scene.objects.len()), (1, 1));
+    assert_eq!((scene.lights.len(), scene.objects.len()), (2, 1));
+    assert_eq!(scene.lights[0].position, None);
+    assert_eq!(scene.lights[1].position, Some(Vec3::new(2.0, 3.0, -4.0)));
     let m = scene.object_transform(0);
     assert!(
         m.transform_point3(Vec3::X)
@@ -527,4 +529,56 @@ fn a_scenes_include_list_is_searched_by_its_shaders() {
     assert_eq!(image.pixels[(4 * 8 + 4) as usize], [1.0, 0.5, 0.25, 1.0]);
     let e = Scene::parse(&text("include = [\" \"]\n"), &file, &dir).unwrap_err().to_string();
     assert!(e.contains("include[0]") && e.contains("empty") && !e.contains('\n'), "{e}");
+}
+
+/// Issue 23: `position` places a Stanford-style light, whose shader computes only its colour. A
+/// bad value is an error at the field; rendering requires it of a Stanford light and refuses it
+/// beside a RenderMan light's own parameters, each in one line naming the light's header.
+#[test]
+fn a_stanford_light_is_placed_by_its_position() {
+    let light = "[[light]]\nshader = \"l.sl\"\n";
+    assert_eq!(
+        error(&format!("{CAMERA}{light}position = [1, nan, 2]\n")),
+        "scenes/bad.toml:6:12: light[0].position: values must be finite numbers"
+    );
+    assert_eq!(
+        error(&format!("{CAMERA}{light}position = [1, 2]\n")),
+        "scenes/bad.toml:6:12: light[0].position: expected an array of 3 numbers, found 2 elements"
+    );
+    let dir = std::env::temp_dir().join(format!("patina-scene-position-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("falloff.sl"),
+        "light shader float4 falloff_light(float4 lightcolor) { return lightcolor * (1.0 / Sdist); }\n\
+         surface shader float4 lit() { perlight float4 c = Cl * max(dot(N, L), 0); return integrate(c); }\n",
+    )
+    .unwrap();
+    let file = dir.join("scene.toml");
+    let prepared = |light: &str| {
+        let text = format!(
+            "[output]\nwidth = 8\nheight = 8\n{CAMERA}{light}\
+             [[object]]\nmesh = \"sphere\"\nshader = \"falloff.sl\"\nname = \"lit\"\n"
+        );
+        let scene = Scene::parse(&text, &file, &dir).unwrap_or_else(|e| panic!("{e}"));
+        patina_runtime::render::prepare(&scene).map(drop).map_err(|e| e.to_string())
+    };
+    let stanford = "[[light]]\nshader = \"falloff.sl\"\nname = \"falloff_light\"\n";
+    assert_eq!(
+        prepared(stanford),
+        Err(format!(
+            "{}:7: light[0]: `falloff_light` is a Stanford-style light shader, which the scene places: \
+             add its world-space position, e.g. `position = [0, 2, -3]`",
+            file.display()
+        ))
+    );
+    assert_eq!(prepared(&format!("{stanford}position = [0, 2, -3]\n")), Ok(()));
+    let renderman = "[[light]]\nshader = \"<shaders.sl>\"\nname = \"pointlight\"\nposition = [0, 2, -3]\n";
+    assert_eq!(
+        prepared(renderman),
+        Err(format!(
+            "{}:7: light[0].position: `pointlight` is a RenderMan-style light shader, which takes its \
+             position from its parameters (e.g. `from`): remove `position`",
+            file.display()
+        ))
+    );
 }

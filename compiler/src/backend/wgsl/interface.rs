@@ -18,7 +18,7 @@
 use serde::{Deserialize, Serialize};
 
 /// The version of the interface's JSON form; it changes whenever a field changes meaning.
-pub const INTERFACE_VERSION: u32 = 2;
+pub const INTERFACE_VERSION: u32 = 3;
 
 /// Where the value of a uniform field comes from.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -55,6 +55,13 @@ pub enum UniformSource {
         light: usize,
         /// The parameter.
         name: String,
+    },
+    /// The position of a bound Stanford-style light, in camera ("current") space: the host's
+    /// light position (OpenGL's), from which the fragment stage computes the light's `L` and
+    /// `Sdist` at each surface point.
+    LightPosition {
+        /// The light's position in the binding.
+        light: usize,
     },
     /// A parameter of the bound displacement shader.
     DisplacementParam {

@@ -146,15 +146,7 @@ pub fn compile_shaded(
 
     let mut light_functions = Vec::new();
     for (k, light) in lights.iter().enumerate() {
-        if light.shader.stanford {
-            return Err(Diagnostic::error(
-                Code::NotExecutable,
-                "Stanford-style light shaders cannot be bound on the GPU yet",
-                light.shader.span,
-                "this light",
-            )
-            .with_help("bind a RenderMan-style light (`illuminate` or `solar`)"));
-        }
+        check_stanford_light(&stages.fragment, light.shader)?;
         let prefix = format!("l{k}_");
         let mut t =
             Translator::new(&mut mb, light.shader, &prefix, &[], &light.strings, &format!("light{k}"));
@@ -270,6 +262,40 @@ pub fn compile_shaded(
     wgsl_names(&module, mb_uniform_var, &mut interface);
     let fingerprint = module_fingerprint(&module);
     Ok(GpuProgram { module, info, interface, fingerprint })
+}
+
+/// What a Stanford-style light reads of the surface point under a RenderMan-style surface, which
+/// gives it its `P`, `N` and `E` in Stanford's terms (`entry::fragment`), with the light's own
+/// `L` and `Sdist` and the uniform inputs; a Stanford surface gives it every input it has.
+const STANFORD_LIGHT_FROM_RENDERMAN: [&str; 5] = ["P", "N", "E", "L", "Sdist"];
+
+/// Refuses a Stanford-style light that reads a geometric input the surface cannot give it: a
+/// RenderMan-style surface has no `Pobj`, `B`, `T` or raw `__position` in Stanford's sense.
+fn check_stanford_light(surface: &Shader, light: &Shader) -> Result<(), Diagnostic> {
+    if !light.stanford || surface.stanford {
+        return Ok(());
+    }
+    let uses = uses::Uses::of(light, &light.body);
+    let Some(g) = uses.globals.iter().find(|g| {
+        g.frequency > crate::ir::types::Frequency::PrimitiveGroup
+            && !STANFORD_LIGHT_FROM_RENDERMAN.contains(&g.name)
+    }) else {
+        return Ok(());
+    };
+    Err(Diagnostic::error(
+        Code::NotExecutable,
+        format!(
+            "Stanford-style light `{}` reads `{}`, which RenderMan-style surface `{}` does not give a light",
+            light.name, g.name, surface.name
+        ),
+        light.span,
+        "this light",
+    )
+    .with_help(format!(
+        "under a RenderMan-style surface a Stanford light sees {} and the uniform inputs; bind it to a \
+         Stanford-style surface to read the rest",
+        STANFORD_LIGHT_FROM_RENDERMAN.map(|n| format!("`{n}`")).join(", ")
+    )))
 }
 
 /// Renames the interface's uniform members and its struct as naga's WGSL writer spells them (it

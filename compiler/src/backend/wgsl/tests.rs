@@ -203,3 +203,39 @@ fn pow_of_a_base_that_cannot_be_negative_is_wgsls_pow() {
         assert!(text.contains("pow(") && !text.contains("trunc("), "{guarded}\n{text}");
     }
 }
+
+/// The falloff light of W. R. Mark's chapter: a Stanford light shader returns only its colour.
+const FALLOFF: &str =
+    "light shader float4 falloff(float4 c, float k) { return c * (1.0 / (k * Sdist + 1.0)); }";
+
+/// A Stanford-style light binds under both styles of surface: the scene's position of it is a
+/// uniform of the block, and the module validates and re-parses.
+#[test]
+fn a_stanford_light_reads_its_position_from_the_uniform_block() {
+    use super::interface::UniformSource;
+    let surfaces = [
+        "surface shader float4 lit() { perlight float4 c = Cl * max(dot(N, L), 0); return integrate(c); }",
+        "surface matte() { illuminance(P, N, PI / 2) { Ci += Cl * normalize(L) . normalize(N); } }",
+    ];
+    for surface in surfaces {
+        let p = program(surface, Some(FALLOFF));
+        let position = UniformSource::LightPosition { light: 0 };
+        assert!(p.interface.uniforms.iter().any(|u| u.source == position), "{:?}", p.interface.uniforms);
+        let wgsl = p.wgsl().unwrap();
+        naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{}\n{wgsl}", e.emit_to_string(&wgsl)));
+    }
+}
+
+/// A RenderMan-style surface has no `Pobj` (nor `B`, `T`, ...) to give a Stanford light.
+#[test]
+fn a_stanford_light_reading_pobj_needs_a_stanford_surface() {
+    let checked = crate::check_source("t.sl", "surface m() { Ci = 1; }", &MemoryLoader::default());
+    let stages = crate::split::split(&checked.program.shaders[0]).unwrap();
+    let light_src = "light shader float4 l(float4 c) { return c * Pobj[0] / Sdist; }";
+    let light = crate::check_source("l.sl", light_src, &MemoryLoader::default());
+    assert!(!light.has_errors(), "{:?}", light.diagnostics);
+    let bound = [BoundLight { shader: &light.program.shaders[0], strings: vec![], categories: vec![] }];
+    let error = compile(&stages, &bound, &[]).expect_err("refused");
+    assert_eq!(error.code, crate::diag::Code::NotExecutable);
+    assert!(error.message.contains("`Pobj`") && error.message.contains("`m`"), "{}", error.message);
+}

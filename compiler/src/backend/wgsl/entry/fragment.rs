@@ -9,13 +9,14 @@ use crate::backend::wgsl::func::FnBuilder;
 use crate::backend::wgsl::interface::UniformSource;
 use crate::backend::wgsl::module::{ModuleBuilder, sanitize};
 use crate::backend::wgsl::uses::Uses;
-use crate::ir::types::{Base, Type};
+use crate::ir::types::{Base, Frequency, Type};
 use crate::ir::{Axis, Input, Shader};
+use crate::sema::globals::Global;
 use crate::split::{StageKind, Stages};
 
 use super::{
     Carried, Crossing, RANDOM_ROW, SCREEN_POSITION, init_params, init_uniform_inputs, location, plain,
-    seed_name, varying_type,
+    seed_name, uniform_input, varying_type,
 };
 
 #[allow(clippy::too_many_arguments)]
@@ -181,9 +182,7 @@ pub(super) fn fragment_entry(
         let d_uses = Uses::of(d, &d.body);
         for g in &d_uses.globals {
             if let Some(value) = read_global(&mut t, g.name) {
-                let var = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
-                let ptr = t.pointer(var);
-                t.store(ptr, value);
+                store_bound_global(&mut t, prefix, g, value);
             }
         }
         for (input, axis, id) in &d_uses.seeds {
@@ -204,9 +203,7 @@ pub(super) fn fragment_entry(
                 continue;
             };
             if d_uses.written.contains(name) && g.ty == sg.ty {
-                let src = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
-                let ptr = t.pointer(src);
-                let v = t.load(ptr);
+                let v = load_bound_global(&mut t, prefix, g);
                 let dst = t.global_var(sg.name, Type::of(sg.ty), false);
                 let dp = t.pointer(dst);
                 t.store(dp, v);
@@ -215,65 +212,23 @@ pub(super) fn fragment_entry(
     }
 
     // The lights, evaluated at the surface point.
-    for (k, (function, light)) in lights.iter().enumerate() {
-        let prefix = format!("l{k}_");
-        let p = read_global(&mut t, "P").map(|p| if shader.stanford { t.xyz(p) } else { p });
-        let n = read_global(&mut t, "N");
-        for (name, value) in [("Ps", p), ("P", p), ("N", n)] {
-            if let (Some(g), Some(v)) =
-                (crate::sema::globals::lookup(name, light.kind, light.stanford), value)
-            {
-                let var = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
-                let ptr = t.pointer(var);
-                t.store(ptr, v);
+    if !lights.is_empty() {
+        let point = SurfacePoint {
+            p: read_global(&mut t, "P").map(|p| if shader.stanford { t.xyz(p) } else { p }),
+            n: read_global(&mut t, "N"),
+            // Stanford's H is made of L and E.
+            e: if shader.stanford { read_global(&mut t, "E") } else { None },
+        };
+        for (k, &(function, light)) in lights.iter().enumerate() {
+            let arrival = if light.stanford {
+                stanford_light(&mut t, k, function, light, &point)
+            } else {
+                renderman_light(&mut t, k, function, light, &point)
+            };
+            if let Some(arrival) = arrival {
+                surface_light_values(&mut t, k, light, arrival, point.e);
             }
         }
-        init_params(&mut t, light, &prefix, &|name| UniformSource::LightParam {
-            light: k,
-            name: name.into(),
-        });
-        t.fb.push(Statement::Call { function: *function, arguments: Vec::new(), result: None });
-        // The surface sees L from the point towards the light; a Stanford surface sees it
-        // normalized, with the colour as a float4 and the half-angle vector H.
-        t.light = Some(k);
-        let mut values: Vec<(&str, Value)> = Vec::new();
-        for name in ["L", "Cl", "Ol"] {
-            let Some(g) = crate::sema::globals::lookup(name, light.kind, light.stanford) else { continue };
-            let src = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
-            let ptr = t.pointer(src);
-            let v = t.load(ptr);
-            values.push((name, v));
-        }
-        for (name, mut v) in values {
-            if name == "L" {
-                v = t.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: v });
-            }
-            if shader.stanford {
-                match name {
-                    "L" => {
-                        v = t.normalize(v);
-                        if let Some(e) = read_global(&mut t, "E") {
-                            let sum = t.binary(naga::BinaryOperator::Add, v, e);
-                            let h = t.normalize(sum);
-                            let dst = t.global_var("H", Type::of(Base::Float3), true);
-                            let dp = t.pointer(dst);
-                            t.store(dp, h);
-                        }
-                    }
-                    "Cl" => {
-                        let one = t.float(1.0);
-                        v = t.fb.add(Expression::Compose { ty: f4, components: vec![v, one] });
-                    }
-                    _ => {}
-                }
-            }
-            if let Some(sg) = crate::sema::globals::lookup(name, shader.kind, shader.stanford) {
-                let dst = t.global_var(sg.name, Type::of(sg.ty), sg.perlight);
-                let dp = t.pointer(dst);
-                t.store(dp, v);
-            }
-        }
-        t.light = None;
     }
 
     t.fb.push(Statement::Call { function: body, arguments: Vec::new(), result: None });
@@ -292,9 +247,7 @@ pub(super) fn fragment_entry(
                 read_global(&mut t, g.name)
             };
             if let Some(value) = value {
-                let var = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
-                let ptr = t.pointer(var);
-                t.store(ptr, value);
+                store_bound_global(&mut t, prefix, g, value);
             }
         }
         init_params(&mut t, a, prefix, &|name| UniformSource::AtmosphereParam { name: name.into() });
@@ -307,9 +260,7 @@ pub(super) fn fragment_entry(
                 continue;
             };
             let value = if a_uses.globals.iter().any(|u| u.name == name) {
-                let src = t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty));
-                let ptr = t.pointer(src);
-                t.load(ptr)
+                load_bound_global(&mut t, prefix, g)
             } else if name == "Oi" && !uses.written.contains("Oi") {
                 let one = t.float(1.0);
                 t.splat(one, 3)
@@ -351,4 +302,173 @@ pub(super) fn fragment_entry(
         [0, 0, 0],
         f,
     ));
+}
+
+/// The surface point the lights are evaluated at, as the surface sees it after displacement
+/// (`P` as a 3-vector in either style; `N` and `E` in the surface's own style).
+struct SurfacePoint {
+    p: Option<Value>,
+    n: Option<Value>,
+    e: Option<Value>,
+}
+
+/// What a light delivers to the surface: the vector from the point towards the light (not
+/// normalized; RenderMan's `-L`), the light's colour (a RenderMan light's `color Cl`, a Stanford
+/// light's returned `float4`) and a RenderMan light's `Ol`.
+struct Arrival {
+    toward: Value,
+    cl: Value,
+    ol: Option<Value>,
+}
+
+/// The private variable holding predefined variable `g` of the shader bound beside the surface
+/// whose variables are named after `prefix` (`l0_`, `d_`, `a_`).
+fn bound_global_var(t: &mut Translator, prefix: &str, g: &Global) -> Handle<naga::GlobalVariable> {
+    t.mb.private(&format!("{prefix}{}", sanitize(g.name)), Type::of(g.ty))
+}
+
+/// Stores `value` into a bound shader's predefined variable `g` (one of its inputs).
+fn store_bound_global(t: &mut Translator, prefix: &str, g: &Global, value: Value) {
+    let var = bound_global_var(t, prefix, g);
+    let ptr = t.pointer(var);
+    t.store(ptr, value);
+}
+
+/// Loads a bound shader's predefined variable `g` (one of its results).
+fn load_bound_global(t: &mut Translator, prefix: &str, g: &Global) -> Value {
+    let var = bound_global_var(t, prefix, g);
+    let ptr = t.pointer(var);
+    t.load(ptr)
+}
+
+/// Runs RenderMan-style light `k` at the surface point (`Ps` = `P`) and reads what it emitted.
+fn renderman_light(
+    t: &mut Translator,
+    k: usize,
+    function: Handle<naga::Function>,
+    light: &Shader,
+    point: &SurfacePoint,
+) -> Option<Arrival> {
+    let prefix = format!("l{k}_");
+    for (name, value) in [("Ps", point.p), ("P", point.p), ("N", point.n)] {
+        if let (Some(g), Some(v)) = (crate::sema::globals::lookup(name, light.kind, light.stanford), value) {
+            store_bound_global(t, &prefix, g, v);
+        }
+    }
+    init_params(t, light, &prefix, &|name| UniformSource::LightParam { light: k, name: name.into() });
+    t.fb.push(Statement::Call { function, arguments: Vec::new(), result: None });
+    let mut result = |name| {
+        let g = crate::sema::globals::lookup(name, light.kind, light.stanford)?;
+        Some(load_bound_global(t, &prefix, g))
+    };
+    let (l, cl, ol) = (result("L")?, result("Cl")?, result("Ol"));
+    // The light's L runs from the light to the point.
+    let toward = t.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: l });
+    Some(Arrival { toward, cl, ol })
+}
+
+/// Runs Stanford-style light `k` at the surface point and reads the colour it returned. Its `L`
+/// (towards the light, normalized) and `Sdist` come from the light's position in the uniform
+/// block; its other inputs are the surface's: under a Stanford surface its own variables of the
+/// same names, under a RenderMan one `P` with w = 1, `N` normalized and `E` = normalize(-P)
+/// (`check_stanford_light` refused the rest).
+fn stanford_light(
+    t: &mut Translator,
+    k: usize,
+    function: Handle<naga::Function>,
+    light: &Shader,
+    point: &SurfacePoint,
+) -> Option<Arrival> {
+    let prefix = format!("l{k}_");
+    let p = point.p?;
+    let position = t.uniform_value(
+        &format!("{prefix}position"),
+        Type::of(Base::Float3),
+        UniformSource::LightPosition { light: k },
+    );
+    let toward = t.binary(naga::BinaryOperator::Subtract, position, p);
+    let sdist = t.length(toward);
+    let spread = t.splat(sdist, 3);
+    let l = t.div(toward, spread);
+    let surface_stanford = t.shader.stanford;
+    for g in Uses::of(light, &light.body).globals {
+        let value = match g.name {
+            "L" => Some(l),
+            "Sdist" => Some(sdist),
+            "PI" | "ncomps" => None,
+            _ if g.frequency <= Frequency::PrimitiveGroup => Some(uniform_input(
+                t,
+                g.name,
+                Type::of(g.ty),
+                UniformSource::Global { name: g.name.to_string() },
+            )),
+            name if surface_stanford => {
+                let var = t.global_var(name, Type::of(g.ty), false);
+                let ptr = t.pointer(var);
+                Some(t.load(ptr))
+            }
+            "P" => {
+                let one = t.float(1.0);
+                let f4 = t.mb.ty(Type::of(Base::Float4), false);
+                Some(t.fb.add(Expression::Compose { ty: f4, components: vec![p, one] }))
+            }
+            "N" => point.n.map(|n| t.normalize(n)),
+            "E" => {
+                let to_eye = t.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: p });
+                Some(t.normalize(to_eye))
+            }
+            _ => None,
+        };
+        if let Some(value) = value {
+            store_bound_global(t, &prefix, g, value);
+        }
+    }
+    init_params(t, light, &prefix, &|name| UniformSource::LightParam { light: k, name: name.into() });
+    t.fb.push(Statement::Call { function, arguments: Vec::new(), result: None });
+    let result = light.result_local?;
+    let name = &crate::backend::wgsl::body::variable_names(light, &prefix)[&result];
+    let var = t.mb.private(name, light.local(result).ty);
+    let ptr = t.pointer(var);
+    let cl = t.load(ptr);
+    Some(Arrival { toward, cl, ol: None })
+}
+
+/// Gives the surface light `k`'s values in its own style: a RenderMan surface sees `L` from the
+/// point towards the light (not normalized), `Cl` as a color (a Stanford light's rgb) and `Ol`;
+/// a Stanford surface sees `L` normalized, the half-angle vector `H` of `L` and `E`, and `Cl` as
+/// a float4 (a RenderMan light's colour with alpha 1).
+fn surface_light_values(t: &mut Translator, k: usize, light: &Shader, arrival: Arrival, e: Option<Value>) {
+    let surface = t.shader;
+    // The surface's per-light variables are its copies for light k.
+    t.light = Some(k);
+    let mut values = Vec::new();
+    if surface.stanford {
+        let l = t.normalize(arrival.toward);
+        values.push(("L", l));
+        if let Some(e) = e {
+            let sum = t.binary(naga::BinaryOperator::Add, l, e);
+            values.push(("H", t.normalize(sum)));
+        }
+        let cl = if light.stanford {
+            arrival.cl
+        } else {
+            let one = t.float(1.0);
+            let f4 = t.mb.ty(Type::of(Base::Float4), false);
+            t.fb.add(Expression::Compose { ty: f4, components: vec![arrival.cl, one] })
+        };
+        values.push(("Cl", cl));
+    } else {
+        values.push(("L", arrival.toward));
+        let cl = if light.stanford { t.xyz(arrival.cl) } else { arrival.cl };
+        values.push(("Cl", cl));
+        values.extend(arrival.ol.map(|ol| ("Ol", ol)));
+    }
+    for (name, v) in values {
+        if let Some(sg) = crate::sema::globals::lookup(name, surface.kind, surface.stanford) {
+            let dst = t.global_var(sg.name, Type::of(sg.ty), sg.perlight);
+            let dp = t.pointer(dst);
+            t.store(dp, v);
+        }
+    }
+    t.light = None;
 }

@@ -116,8 +116,10 @@ pub(crate) fn entry_points(
     // Lights are evaluated at the surface point and orientation, and Stanford's H needs E.
     let mut carried_globals = fragment_uses.globals.clone();
     // A displacement shader runs at the top of the fragment stage on the surface's inputs, an
-    // atmosphere at the end on its results.
-    for (_, d) in bound.displacement.into_iter().chain(bound.atmosphere) {
+    // atmosphere at the end on its results; a Stanford-style light reads the surface point's
+    // inputs by their names (`Pobj`, `T`, ...).
+    let stanford_lights = lights.iter().filter(|(_, l)| l.stanford).copied();
+    for (_, d) in bound.displacement.into_iter().chain(bound.atmosphere).chain(stanford_lights) {
         for g in Uses::of(d, &d.body).globals {
             if let Some(sg) = crate::sema::globals::lookup(g.name, surface.kind, surface.stanford)
                 && !carried_globals.iter().any(|c| c.name == sg.name)

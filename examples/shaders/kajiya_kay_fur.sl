@@ -29,6 +29,7 @@
 #define FUR_OUTER 0.25
 
 // (angle around the z axis, angle around the tube, distance to the core circle) of p.
+// sweep: p in [-1e6, 1e6] (object-space points of the torus: past 1e19 their squares overflow f32)
 vector fur_coords(point p)
 {
     float q = sqrt(p[0] * p[0] + p[1] * p[1]);
@@ -37,6 +38,7 @@ vector fur_coords(point p)
 }
 
 // The unit vector from the core circle towards p (the height axis of the hair at p).
+// sweep: p in [-1e6, 1e6] (object-space points of the torus: past 1e19 their squares overflow f32)
 vector fur_radial(point p)
 {
     float q = max(sqrt(p[0] * p[0] + p[1] * p[1]), 1e-6);
@@ -126,6 +128,8 @@ vector fur_exit(point o; vector d; float ri)
 // at the centres of equal segments up to where the ray leaves the shell, the shell taken as
 // locally flat: (0.25 - rho) / max(radial . l, 0.25), at most 0.3. 0 when the ray heads into the
 // core (radial . l <= 0); 1 when shadow_steps is 0 (shadows off).
+// The cost knob: past 65535 steps the interpreter's loop budget stops the march (docs/limits.md).
+// sweep: shadow_steps in [1, 256]
 float fur_shadow(point x; vector l, radial; float rho, shell, nu, nv, comb, slab, tau, shadow_steps)
 {
     if (shadow_steps <= 0)
@@ -140,6 +144,8 @@ float fur_shadow(point x; vector l, radial; float rho, shell, nu, nv, comb, slab
     return 1 - volume_opacity(tau * depth * ds);
 }
 
+// The cost knobs: past 65535 steps the interpreter's loop budget stops the march (docs/limits.md).
+// sweep: steps in [1, 256]; shadow_steps in [1, 64]
 surface kajiya_kay_fur(float steps = 24; float shadow_steps = 4;
                        float kd = 0.7; float ks = 0.5; float p = 24; float mirror = 0;
                        float tau = 120; float shell = 0.09; float nu = 180; float nv = 28;

@@ -26,6 +26,8 @@ float soft_sphere_density(point p; float variant, offset)
                       soft_sphere(p, point(offset, 0, 0), 0.4, 0.2));
 }
 
+// The cost knob: past 65535 steps the interpreter's loop budget stops the march (docs/limits.md).
+// sweep: steps in [1, 1024]
 surface
 soft_sphere(float steps = 64, kappa = 3, phase = 0.5, extent = 1.2;
             color emission = color(1, 0.55, 0.15);
@@ -61,6 +63,7 @@ soft_sphere(float steps = 64, kappa = 3, phase = 0.5, extent = 1.2;
 // against: the closed-form optical depth of the unit-extinction soft sphere along the ray at
 // impact parameter b (seed-digest §12 S2; S0 and S1 are the half-chords of the outer and inner
 // spheres), and the opacity 1 - exp(-kappa tau) of linear extinction, emission only.
+// sweep: kappa in [0, 1e4] (an absorption coefficient: a negative one amplifies without bound)
 surface
 soft_sphere_exact(float kappa = 3, extent = 1.2; color emission = color(1, 0.55, 0.15))
 {

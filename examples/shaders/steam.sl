@@ -77,6 +77,8 @@ float steam_density(point q; float frame, maxdensity, exponent, gain, frequency,
 // sun) plus an ambient term, times albedo. Front to back (volume_composite), stopping once the
 // opacity reaches `threshold` (Ebert stops at transparency < 0.01). Returns the premultiplied
 // colour and opacity; `depth` is the optical depth tau sum(density dl) of the samples taken.
+// The cost knob: past 65535 steps the interpreter's loop budget stops the march (docs/limits.md).
+// sweep: steps in [1, 1024]; t1 in [0, 1e4]; len in [0, 1e4] (a ray inside the unit cube)
 float4 steam_march(point O; vector D; float t0, t1, len, steps, jitter, threshold, tau;
                    color suncolor, ambient; float cos_theta, g, albedo;
                    float frame, maxdensity, exponent, gain, frequency, octaves, radius0, radius1;
@@ -104,6 +106,8 @@ float4 steam_march(point O; vector D; float t0, t1, len, steps, jitter, threshol
 // eye enters at P (t = 1 on E + t (P - E) in object space) and leaves at the cube's far side; on a
 // back face the exit is P itself, so back faces add nothing. `steps` is the cost knob. tosun is the
 // direction to the sun (world space in the scene file), suncolor its radiance.
+// The cost knob: past 65535 steps the interpreter's loop budget stops the march (docs/limits.md).
+// sweep: steps in [1, 1024]; g in [-0.99, 0.99] (Henyey-Greenstein's asymmetry); albedo in [0, 1]
 surface steam(float steps = 24;
               float frame = 0;
               float maxdensity = 0.57;

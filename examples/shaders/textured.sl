@@ -1,5 +1,6 @@
 // Texture lookups in both styles: a RenderMan surface reading a 2D texture by name (a string
 // parameter) with lighting, and a Stanford surface reading a 3D texture through a `texref`.
+// sweep: repeats in [0, 1e4] (times an s of 1e30 it would overflow f32)
 surface
 textured(string map = "checker:8"; float Kd = 0.8; float repeats = 4)
 {

@@ -13,6 +13,7 @@
 // with a large k is the supersampled reference.
 #include <solid.sl>
 
+// sweep: s in [-1e4, 1e4]; t in [-1e4, 1e4] (texture coordinates: past 1e19 s^2 overflows f32)
 surface
 zone_plate(float aa = 1;
            float split = 1;
@@ -46,12 +47,18 @@ zone_plate(float aa = 1;
 
 // The exact average of frac(a + b t^2) over t in [t0, t1] (0 <= t0 < t1, b > 0): on each piece
 // where floor(a + b t^2) = k is constant, the integral of a - k + b t^2; the pieces end where the
-// ramp crosses an integer, at t = sqrt((k + 1 - a) / b).
+// ramp crosses an integer, at t = sqrt((k + 1 - a) / b). A segment of no length (t1 <= t0: a
+// footprint without derivatives) averages over its point, frac(a + b t0^2). The loop visits every
+// stripe the segment crosses, b (t1^2 - t0^2) of them, and needs a + b t^2 to keep whole numbers
+// apart in f32 (|a| well below 2^24).
+// sweep: a in [-1e6, 1e6]; b in [0, 1e4]; t0 in [0, 1]; t1 in [0, 1]
 float zone_plate_line_average(float a, b, t0, t1)
 {
     float sum = 0;
     float lo = t0;
     float k = floor(a + b * t0 * t0);
+    if (t1 <= t0)
+        return a + b * t0 * t0 - k;
     while (lo < t1) {
         // Clamped: rounding must not step backwards or past the segment.
         float hi = clamp(sqrt(max(k + 1 - a, 0) / b), lo, t1);
@@ -68,6 +75,7 @@ float zone_plate_line_average(float a, b, t0, t1)
 // in s, so the quadrature converges fast; runtime/tests/gallery/solid.rs checks the same integral
 // written independently in Rust). On this screen-aligned plane the box is ds by dt, with the
 // analytic derivatives of the CPU reference.
+// sweep: s in [-1e4, 1e4]; t in [-1e4, 1e4] (texture coordinates: past 1e19 s^2 overflows f32)
 surface
 zone_plate_exact(float frequency = 50; float panels = 64)
 {

@@ -29,6 +29,8 @@ float star_coverage(float x, y, rmin, rmax, npoints, w)
     return filteredstep(0, inside, w);
 }
 
+// The cost knob: samples^2 sub-pixels (past 65535 per side the interpreter's loop budget stops).
+// sweep: samples in [1, 16]
 surface star(float Ka = 1; float Kd = 1;
              color starcolor = color(1.0000, 0.5161, 0.0000);
              float npoints = 5; float sctr = 0.5; float tctr = 0.5;

@@ -101,10 +101,30 @@ fn screenshot(fb: &Path, (width, height): (u32, u32)) -> Image {
     image
 }
 
+/// `patina view` of `scene` on `display` at the window's size, with `more` arguments; its stderr.
+fn view(scene: &Path, display: &str, more: &[&str]) -> (Killed, Lines) {
+    let size = format!("{}x{}", WINDOW.0, WINDOW.1);
+    let mut view = Killed(
+        Command::new(env!("CARGO_BIN_EXE_patina"))
+            .args(["view", &scene.display().to_string(), "--size", &size])
+            .args(more)
+            .env("DISPLAY", display)
+            .env("NODEVICE_SELECT", "1")
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the patina binary runs"),
+    );
+    let lines = Lines::new(&mut view.0);
+    (view, lines)
+}
+
 /// `patina render` of `scene`, opaque (the window shows colour without alpha).
-fn rendered(scene: &Path) -> Image {
+fn rendered(scene: &Path, more: &[&str]) -> Image {
     let png = scene.with_extension("png");
-    let out = patina(&["render", &scene.display().to_string(), "-o", &png.display().to_string()]);
+    let (scene, output) = (scene.display().to_string(), png.display().to_string());
+    let out = patina(&[&["render", scene.as_str(), "-o", output.as_str()], more].concat());
     assert!(out.status.success(), "patina render: {}", String::from_utf8_lossy(&out.stderr));
     let mut image = Image::read_png(&png).expect("the rendered PNG");
     image.pixels.iter_mut().for_each(|p| p[3] = 1.0);
@@ -205,21 +225,9 @@ fn the_window_shows_the_render_follows_edits_and_keeps_the_picture_on_an_error()
     let scene = scene(&dir);
     let shader = dir.join("plastic.sl");
     let original = std::fs::read_to_string(&shader).unwrap();
-    let size = format!("{}x{}", WINDOW.0, WINDOW.1);
-    let mut view = Killed(
-        Command::new(env!("CARGO_BIN_EXE_patina"))
-            .args(["view", &scene.display().to_string(), "--size", &size])
-            .env("DISPLAY", &display)
-            .env("NODEVICE_SELECT", "1")
-            .stdin(Stdio::null())
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("the patina binary runs"),
-    );
-    let mut lines = Lines::new(&mut view.0);
+    let (_view, mut lines) = view(&scene, &display, &[]);
     lines.until("frame 1 presented");
-    let first = shows(&fb, &rendered(&scene), "`patina render` of the scene", &lines);
+    let first = shows(&fb, &rendered(&scene, &[]), "`patina render` of the scene", &lines);
 
     // Edits, each timed from its write to the frame showing it.
     let colours =
@@ -233,7 +241,7 @@ fn the_window_shows_the_render_follows_edits_and_keeps_the_picture_on_an_error()
         std::fs::write(&shader, recoloured(&original, colour)).unwrap();
         let presented = lines.until(&format!("frame {} presented", i + 2));
         latencies.push(presented - written);
-        last = Some(shows(&fb, &rendered(&scene), &format!("the edit to colour {colour}"), &lines));
+        last = Some(shows(&fb, &rendered(&scene, &[]), &format!("the edit to colour {colour}"), &lines));
     }
     latencies.sort();
     eprintln!(
@@ -258,6 +266,22 @@ fn the_window_shows_the_render_follows_edits_and_keeps_the_picture_on_an_error()
         lines.log.join("\n")
     );
     assert!(!lines.log.iter().any(|l| l.contains(&format!("frame {} presented", colours.len() + 2))));
+}
+
+#[test]
+fn the_cpu_backend_shows_the_cpu_reference() {
+    let dir = scratch_dir("view", "cpu");
+    let Some((_server, display)) = xvfb(&dir) else { return };
+    let scene = scene(&dir);
+    let (_view, mut lines) = view(&scene, &display, &["--backend", "cpu"]);
+    lines.until("frame 1 presented");
+    let expected = rendered(&scene, &["--backend", "cpu"]);
+    shows(&dir.join("Xvfb_screen0"), &expected, "`patina render --backend cpu`", &lines);
+    assert!(
+        lines.log.iter().any(|l| l.contains("rendered on the CPU reference")),
+        "{}",
+        lines.log.join("\n")
+    );
 }
 
 #[test]

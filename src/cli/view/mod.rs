@@ -392,7 +392,7 @@ impl Viewer {
         let c = compare(&on_gpu, &on_cpu, &thresholds).map_err(|e| format!("error: {e}"))?;
         let verdict = if c.passes(&thresholds) { "within" } else { "outside" };
         let what = format!(
-            "difference |gpu - cpu| x{DIFF_SCALE}: max {:.4}, mean {:.5}, {} of {} pixels over {} \
+            "difference |gpu - cpu| x{DIFF_SCALE}: max {:.1e}, mean {:.1e}, {} of {} pixels over {} \
              ({verdict} the gallery's thresholds)",
             c.max_error, c.mean_error, c.failing_pixels, c.pixels, thresholds.fail
         );

@@ -21,7 +21,7 @@ const MAX_ELEVATION: f32 = 89.0 * std::f32::consts::PI / 180.0;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Orbit {
     start: Camera,
-    /// Radians about `up`, positive to the right.
+    /// Radians about `up`; positive moves the camera to its left, turning the scene right.
     yaw: f32,
     /// Radians up from the start elevation.
     pitch: f32,
@@ -49,9 +49,22 @@ impl Orbit {
     /// Turns by a drag of `dx`, `dy` pixels (right and down positive): dragging right turns the
     /// scene right, dragging down tips its top towards the viewer.
     pub fn drag(&mut self, dx: f64, dy: f64) {
-        self.yaw -= dx as f32 * RADIANS_PER_PIXEL;
+        self.yaw += dx as f32 * RADIANS_PER_PIXEL;
+        // Clamped where the elevation stops, so that dragging back turns back at once.
+        let start = self.start_elevation();
         self.pitch =
-            (self.pitch + dy as f32 * RADIANS_PER_PIXEL).clamp(-2.0 * MAX_ELEVATION, 2.0 * MAX_ELEVATION);
+            (self.pitch + dy as f32 * RADIANS_PER_PIXEL).clamp(-MAX_ELEVATION - start, MAX_ELEVATION - start);
+    }
+
+    /// The start camera's elevation above the plane across `up`, in radians.
+    fn start_elevation(&self) -> f32 {
+        let back = (self.start.from - self.start.to).try_normalize().unwrap_or(Vec3::Z);
+        back.dot(self.up()).clamp(-1.0, 1.0).asin()
+    }
+
+    /// The start camera's `up`, of unit length.
+    fn up(&self) -> Vec3 {
+        self.start.up.try_normalize().unwrap_or(Vec3::Y)
     }
 
     /// Moves nearer by `lines` notches of a scroll wheel (negative: further).
@@ -70,12 +83,11 @@ impl Orbit {
         let offset = start.from - start.to;
         let distance = offset.length();
         let Some(back) = offset.try_normalize() else { return start };
-        let up = start.up.try_normalize().unwrap_or(Vec3::Y);
+        let up = self.up();
         // A frame about `up`: `ahead` is the start direction's part across `up`.
         let ahead = (back - up * back.dot(up)).try_normalize().unwrap_or_else(|| up.any_orthonormal_vector());
         let side = up.cross(ahead);
-        let elevation =
-            (back.dot(up).clamp(-1.0, 1.0).asin() + self.pitch).clamp(-MAX_ELEVATION, MAX_ELEVATION);
+        let elevation = (self.start_elevation() + self.pitch).clamp(-MAX_ELEVATION, MAX_ELEVATION);
         let (sin_yaw, cos_yaw) = self.yaw.sin_cos();
         let direction = (ahead * cos_yaw + side * sin_yaw) * elevation.cos() + up * elevation.sin();
         Camera { from: start.to + direction * distance * self.zoom, ..start }
@@ -120,7 +132,8 @@ mod tests {
     fn a_quarter_turn_about_up() {
         let mut orbit = Orbit::new(scene_camera());
         orbit.drag(-std::f64::consts::FRAC_PI_2 / f64::from(RADIANS_PER_PIXEL), 0.0);
-        // From -z, a quarter turn about +y (ahead -z, side +y × -z = +x).
+        // Dragging left turns the scene left: the camera, from -z, goes to its right, +x (the
+        // camera's right, `up` × forward, is +x there).
         assert!(close(orbit.camera().from, Vec3::new(4.0, 0.0, 0.0)), "{:?}", orbit.camera());
     }
 
@@ -130,6 +143,15 @@ mod tests {
         orbit.drag(0.0, 1e6);
         let from = orbit.camera().from;
         assert!(from.y < 4.0 && from.y > 3.9, "{from:?}");
+    }
+
+    #[test]
+    fn dragging_back_from_the_pole_turns_back_at_once() {
+        let mut orbit = Orbit::new(scene_camera());
+        orbit.drag(0.0, 1e6);
+        let top = orbit.camera().from;
+        orbit.drag(0.0, -10.0);
+        assert!(orbit.camera().from.y < top.y - 0.01, "{:?}", orbit.camera());
     }
 
     #[test]

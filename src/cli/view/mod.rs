@@ -182,32 +182,7 @@ impl Viewer {
             Window::default_attributes().with_title(title).with_inner_size(PhysicalSize::new(width, height));
         let window =
             Arc::new(event_loop.create_window(attributes).map_err(|e| format!("cannot open a window: {e}"))?);
-        let mut desc =
-            wgpu::InstanceDescriptor::new_with_display_handle(Box::new(event_loop.owned_display_handle()));
-        desc.backends = wgpu::Backends::from_env().unwrap_or_else(Gpu::default_backends);
-        desc.flags = wgpu::InstanceFlags::default().with_env();
-        let instance = wgpu::Instance::new(desc);
-        let surface = instance
-            .create_surface(Arc::clone(&window))
-            .map_err(|e| format!("cannot draw to the window: {e}"))?;
-        let options =
-            wgpu::RequestAdapterOptions { compatible_surface: Some(&surface), ..Default::default() };
-        // The window is drawn by the GPU even when the picture is the CPU's: without an adapter
-        // there is nothing to show it with.
-        let adapter = pollster::block_on(instance.request_adapter(&options)).map_err(|e| {
-            format!(
-                "{}; `patina watch` renders to a PNG without one",
-                gpu::GpuError::NoAdapter(e.to_string())
-            )
-        })?;
-        let device = Gpu::from_adapter(adapter).map_err(|e| e.to_string())?;
-        let presenter = Presenter::new(
-            Arc::clone(&window),
-            surface,
-            device.adapter(),
-            device.device().clone(),
-            device.queue().clone(),
-        )?;
+        let (presenter, device) = Presenter::open(event_loop, Arc::clone(&window))?;
         let gpu = match gpu::adapter_required() {
             true => Some(device),
             false => {

@@ -4,7 +4,9 @@
 
 use std::sync::Arc;
 
+use patina_runtime::gpu::Gpu;
 use patina_runtime::image::Image;
+use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
 
 /// The blit: one triangle covering the viewport, each fragment fetching its own texel (clamped,
@@ -44,8 +46,36 @@ pub struct Presenter {
 }
 
 impl Presenter {
+    /// A presenter for `window`, and the device it draws with, which renders the scene too
+    /// (opened as `Gpu::new` opens one, on an adapter that can draw to the window).
+    pub fn open(event_loop: &ActiveEventLoop, window: Arc<Window>) -> Result<(Presenter, Gpu), String> {
+        let mut desc =
+            wgpu::InstanceDescriptor::new_with_display_handle(Box::new(event_loop.owned_display_handle()));
+        desc.backends = wgpu::Backends::from_env().unwrap_or_else(Gpu::default_backends);
+        desc.flags = wgpu::InstanceFlags::default().with_env();
+        let instance = wgpu::Instance::new(desc);
+        let surface = instance
+            .create_surface(Arc::clone(&window))
+            .map_err(|e| format!("cannot draw to the window: {e}"))?;
+        let options =
+            wgpu::RequestAdapterOptions { compatible_surface: Some(&surface), ..Default::default() };
+        // The window is drawn by the GPU even when the picture is the CPU's: without an adapter
+        // there is nothing to show it with.
+        let adapter = pollster::block_on(instance.request_adapter(&options)).map_err(|e| {
+            format!(
+                "no GPU adapter can draw the window ({e}); install a Vulkan driver (on Debian/Ubuntu: \
+                 apt-get install mesa-vulkan-drivers libvulkan1), or use `patina watch`, which renders \
+                 to a PNG without one"
+            )
+        })?;
+        let gpu = Gpu::from_adapter(adapter).map_err(|e| e.to_string())?;
+        let presenter =
+            Presenter::new(window, surface, gpu.adapter(), gpu.device().clone(), gpu.queue().clone())?;
+        Ok((presenter, gpu))
+    }
+
     /// A presenter for `window` through `surface`, made on `adapter`'s `device`.
-    pub fn new(
+    fn new(
         window: Arc<Window>,
         surface: wgpu::Surface<'static>,
         adapter: &wgpu::Adapter,

@@ -97,7 +97,7 @@ fn choose(scene: &Scene, wanted: &[String]) -> Result<Vec<(Knob, Vec<Setting>)>,
 }
 
 /// `WxH` as two sizes.
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
+pub(super) fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("`--size {text}`: expected WIDTHxHEIGHT, e.g. 64x64");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h): (u32, u32) = (w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?);

@@ -8,11 +8,13 @@ mod eval;
 mod explain;
 mod explain_scene;
 mod gallery;
+mod live;
 mod lsp;
 mod plot;
 mod progress;
 mod render;
 mod stability;
+mod view;
 mod watch;
 
 use std::path::PathBuf;
@@ -54,6 +56,10 @@ enum Command {
     /// Render a scene, then render it again whenever the scene or a shader it uses (or a file
     /// included) changes, printing each outcome; an error keeps the last good image.
     Watch(watch::WatchArgs),
+    /// A window showing a scene: drag to orbit, scroll to zoom; it renders again when the scene
+    /// or a shader it uses (or a file included) changes, keeping the last good picture on an
+    /// error; D toggles the difference between the GPU and the CPU reference.
+    View(view::ViewArgs),
     /// Check, compile and render every shader file of a directory (third-party shaders) on both
     /// backends, in a scene made for each shader's kind; write a results table and a contact sheet.
     Corpus(CorpusArgs),
@@ -364,6 +370,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Bench(args) => bench::run(args),
         Command::Stability(args) => stability::run(args),
         Command::Watch(args) => watch::run(args),
+        Command::View(args) => view::run(args),
         Command::Corpus(args) => corpus::run(args),
         Command::Lsp(args) => lsp::run(args),
     }

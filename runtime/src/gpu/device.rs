@@ -42,6 +42,12 @@ impl Gpu {
         };
         let adapter = pollster::block_on(instance.request_adapter(&options))
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        Gpu::from_adapter(adapter)
+    }
+
+    /// Opens a device on `adapter` (one the caller chose, e.g. for a window's surface) with the
+    /// features and limits [`Gpu::new`] asks for, and wraps it as [`Gpu::from_device`] does.
+    pub fn from_adapter(adapter: wgpu::Adapter) -> Result<Gpu, GpuError> {
         // Float32 filtering lets textures keep full precision; blending on Rgba32Float targets
         // needs its own feature. Both are optional: without them we degrade or report errors.
         let wanted = wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::FLOAT32_BLENDABLE;

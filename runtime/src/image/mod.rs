@@ -104,19 +104,24 @@ impl Image {
     pub fn write_png(&self, path: impl AsRef<Path>) -> Result<(), ImageError> {
         let path = path.as_ref();
         self.check()?;
+        let bytes = self.to_rgba8();
+        let file_error = |message: String| ImageError::File { path: path.to_owned(), message };
+        let buffer = image::RgbaImage::from_raw(self.width, self.height, bytes)
+            .ok_or_else(|| file_error("pixel buffer does not match the size".into()))?;
+        buffer.save_with_format(path, image::ImageFormat::Png).map_err(|e| file_error(e.to_string()))
+    }
+
+    /// The pixels as 8-bit straight-alpha RGBA, row by row, exactly as [`Image::write_png`]
+    /// stores them (so that a picture shown on screen has the PNG's bytes).
+    pub fn to_rgba8(&self) -> Vec<u8> {
         let byte = |c: f32| (c.clamp(0.0, 1.0) * 255.0).round() as u8;
-        let bytes: Vec<u8> = self
-            .pixels
+        self.pixels
             .iter()
             .flat_map(|&[r, g, b, a]| {
                 let straight = if a > 0.0 && a < 1.0 { 1.0 / a } else { 1.0 };
                 [byte(r * straight), byte(g * straight), byte(b * straight), byte(a)]
             })
-            .collect();
-        let file_error = |message: String| ImageError::File { path: path.to_owned(), message };
-        let buffer = image::RgbaImage::from_raw(self.width, self.height, bytes)
-            .ok_or_else(|| file_error("pixel buffer does not match the size".into()))?;
-        buffer.save_with_format(path, image::ImageFormat::Png).map_err(|e| file_error(e.to_string()))
+            .collect()
     }
 
     /// Reads a PNG (any colour type; 8 or 16 bits) as floats in [0, 1]: `value / 255` or

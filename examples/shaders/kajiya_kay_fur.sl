@@ -145,7 +145,8 @@ float fur_shadow(point x; vector l, radial; float rho, shell, nu, nv, comb, slab
 }
 
 // The cost knobs: past 65535 steps the interpreter's loop budget stops the march (docs/limits.md).
-// sweep: steps in [1, 256]; shadow_steps in [1, 64]
+// sweep: steps in [1, 256]; shadow_steps in [1, 64]; tau in [0, 1e4] (an extinction coefficient)
+// sweep: shell in [0, 0.25] (the fur's depth, at most the tube's radius)
 surface kajiya_kay_fur(float steps = 24; float shadow_steps = 4;
                        float kd = 0.7; float ks = 0.5; float p = 24; float mirror = 0;
                        float tau = 120; float shell = 0.09; float nu = 180; float nv = 28;
@@ -153,7 +154,9 @@ surface kajiya_kay_fur(float steps = 24; float shadow_steps = 4;
                        color skin = color(0.25, 0.16, 0.12))
 {
     point o = transform("object", P);
-    vector d = normalize(vtransform("object", I));
+    // An eye at the shading point itself (I = 0) has no direction: it looks straight in.
+    vector view = vtransform("object", I);
+    vector d = normalize(length(view) > 0 ? view : -fur_radial(o));
     float ri = FUR_OUTER - shell;
     // The ray's interval in the shell, [-t_back, t_far]: P lies on the mesh, on or just inside
     // the analytic outer surface, so the ray's entry is searched backwards from P and its exit

@@ -88,21 +88,31 @@ pub fn adapter_required() -> bool {
 /// One device per test process, not one per test: opening a device costs more than most GPU
 /// tests, and render pipelines kept by one test (see `Gpu::kept_pipelines`) serve the next. Sharing
 /// is safe because wgpu's error scopes are thread-local, so a test running beside another catches
-/// only its own errors. A test that counts pipelines or loses the device opens its own with
-/// [`Gpu::new`].
+/// only its own errors. A test that counts pipelines or loses the device takes its own from
+/// [`own_for_tests`].
 ///
 /// # Panics
 /// When no adapter can be opened and the GPU is not turned off: a test that silently skipped on a
 /// machine without a driver would hide the missing driver.
 pub fn for_tests() -> Option<&'static Gpu> {
     static SHARED: std::sync::OnceLock<Gpu> = std::sync::OnceLock::new();
-    if !adapter_required() {
-        return None;
-    }
-    Some(SHARED.get_or_init(|| match Gpu::new() {
+    adapter_required().then(|| SHARED.get_or_init(open_for_tests))
+}
+
+/// A device of the test's own, not shared with the other tests of the process: `None` when
+/// `PATINA_GPU=off`.
+///
+/// # Panics
+/// As [`for_tests`], when no adapter can be opened.
+pub fn own_for_tests() -> Option<Gpu> {
+    adapter_required().then(open_for_tests)
+}
+
+fn open_for_tests() -> Gpu {
+    match Gpu::new() {
         Ok(gpu) => gpu,
         Err(e) => panic!("\n\n*** GPU tests need an adapter and none could be opened ***\n{e}\n\n"),
-    }))
+    }
 }
 
 #[cfg(test)]

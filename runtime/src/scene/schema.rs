@@ -86,7 +86,9 @@ pub(crate) struct RawShader {
     pub animate: Vec<String>,
 }
 
-/// A `[[light]]`: its shader, and the position of a Stanford-style light (world space).
+/// A `[[light]]`: its shader, and the position of a Stanford-style light (world space). The fields
+/// of [`RawShader`] are repeated, not flattened: serde's `flatten` does not combine with
+/// `deny_unknown_fields`, which keeps a misspelt key an error.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawLight {

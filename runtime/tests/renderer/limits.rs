@@ -5,7 +5,7 @@ use patina_compiler::backend::cpu::{Binding, CpuProgram, EvalError, Evaluator};
 use patina_compiler::backend::wgsl::MAX_LOOP_ITERATIONS;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::{
-    Address, Blend, Draw, Filter, Gpu, GpuError, Target, TargetFormat, TextureData, TextureDimension,
+    Address, Blend, Draw, Filter, GpuError, Target, TargetFormat, TextureData, TextureDimension,
 };
 use patina_runtime::kernel::run_kernel;
 use patina_runtime::render::{self, Backend, RenderError};
@@ -154,11 +154,8 @@ fn an_unbounded_loop_stops_at_the_cap_on_the_gpu_and_is_e0702_in_the_interpreter
 
 #[test]
 fn a_lost_device_is_an_error_not_a_panic() {
-    if patina_runtime::gpu::for_tests().is_none() {
-        return;
-    }
     // A device of its own: losing it must not disturb the other tests.
-    let gpu = Gpu::new().unwrap_or_else(|e| panic!("{e}"));
+    let Some(gpu) = patina_runtime::gpu::own_for_tests() else { return };
     gpu.lose_device_for_tests();
     let target = Target { width: 4, height: 4, format: TargetFormat::Rgba32Float, clear: [0.0; 4] };
     let module = naga::Module::default();

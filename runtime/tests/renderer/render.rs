@@ -264,11 +264,8 @@ fn pipelines_are_kept_per_device_and_reused_with_fresh_uniforms() {
     // Rendering again makes no new pipeline and draws the same picture; another value of a
     // parameter still reaches the shader (a kept pipeline gets the draw's own uniforms, or a
     // specialized module gets a pipeline of its own), and the GPU still agrees with the CPU.
-    if patina_runtime::gpu::for_tests().is_none() {
-        return;
-    }
     // A device of its own: the shared one keeps the pipelines of every test in the process.
-    let gpu = &patina_runtime::gpu::Gpu::new().unwrap_or_else(|e| panic!("{e}"));
+    let Some(gpu) = &patina_runtime::gpu::own_for_tests() else { return };
     let mut s = scene("soft_sphere", 24, 24);
     let prepared = render::prepare(&s).unwrap();
     let first = render::render(&prepared, Backend::Gpu, Some(gpu)).unwrap();
@@ -319,11 +316,8 @@ fn constants_living_inside_a_varying_branch_render_alike() {
 /// (each object made its own before, and only the next render reused one), and both still draw.
 #[test]
 fn objects_sharing_a_module_share_one_pipeline_in_a_render() {
-    if patina_runtime::gpu::for_tests().is_none() {
-        return;
-    }
     // A device of its own: the shared one counts the pipelines of every test in the process.
-    let gpu = patina_runtime::gpu::Gpu::new().unwrap_or_else(|e| panic!("{e}"));
+    let Some(gpu) = patina_runtime::gpu::own_for_tests() else { return };
     let s = written_scene(
         "shared",
         "surface shared(color tint = 1) { Ci = tint; Oi = 1; }\n",

@@ -154,9 +154,14 @@ surface kajiya_kay_fur(float steps = 24; float shadow_steps = 4;
                        color skin = color(0.25, 0.16, 0.12))
 {
     point o = transform("object", P);
-    // An eye at the shading point itself (I = 0) has no direction: it looks straight in.
-    vector view = vtransform("object", I);
-    vector d = normalize(length(view) > 0 ? view : -fur_radial(o));
+    // The view direction, total: a denormal I is normalized without underflow; an eye at the
+    // shading point itself (I = 0) has no direction and looks straight in, and on the core circle,
+    // where "in" has no direction either (never a shading point), along -z.
+    vector d = lighting_normalize(vtransform("object", I));
+    if (d . d == 0)
+        d = lighting_normalize(-fur_radial(o));
+    if (d . d == 0)
+        d = vector(0, 0, -1);
     float ri = FUR_OUTER - shell;
     // The ray's interval in the shell, [-t_back, t_far]: P lies on the mesh, on or just inside
     // the analytic outer surface, so the ray's entry is searched backwards from P and its exit

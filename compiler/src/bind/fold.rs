@@ -152,14 +152,10 @@ impl Scalar {
     }
 }
 
-/// The value of scalar expression `id` when it depends on literals only, evaluated in f64 (as the
-/// host evaluates per-draw values) and with wrapping 32-bit integers; `None` otherwise, or where
-/// the value would need a built-in (those are left to run as they would).
-pub(super) fn constant(shader: &Shader, id: ExprId) -> Option<Scalar> {
-    constant_in(shader, id, &|_| None)
-}
-
-/// As [`constant`], with the values `known` gives for some locals (those just stored).
+/// The value of scalar expression `id` when it depends on literals and the values `known` gives
+/// for some locals only, evaluated in f64 (as the host evaluates per-draw values) and with
+/// wrapping 32-bit integers; `None` otherwise, or where the value would need a built-in (those
+/// are left to run as they would).
 pub(super) fn constant_in(
     shader: &Shader,
     id: ExprId,

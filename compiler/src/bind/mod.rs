@@ -1,7 +1,9 @@
 //! Binding (DESIGN.md §4): a shader specialized for what a scene fixes. Parameters the scene fixes
 //! become constants (`fold.rs`), and so do comparisons of strings (which are always known at
-//! compile time: the scene's value or the default); conditions that become constant decide their branches at compile
-//! time and the code nobody reads any more is dropped (`prune.rs`). What remains is a smaller
+//! compile time: the scene's value or the default); conditions that become constant decide their
+//! branches at compile time, also inside inlined functions whose parameters received a fixed
+//! parameter or a literal (a library function's mode or variant argument), and the code nobody
+//! reads any more, or that follows a `return` always taken, is dropped (`prune.rs`). What remains is a smaller
 //! shader with the same meaning for that binding; the split and both backends then leave out the
 //! uniforms, textures, varyings and functions it no longer reads.
 //!
@@ -108,9 +110,8 @@ pub fn specialize(
     strings::propagate(&mut shader);
     let (mut decisions, mut reads) = fold::substitute(&mut shader, fixed);
     fold::compare_strings(&mut shader, strings, &mut reads);
-    if !reads.is_empty() {
-        decisions.extend(prune::decide(&mut shader, &reads));
-    }
+    let (decided, changed) = prune::decide(&mut shader, &reads);
+    decisions.extend(decided);
     let unconsumed: Vec<String> = shader
         .params
         .iter()
@@ -118,7 +119,7 @@ pub fn specialize(
         .filter(|l| matches!(l.kind, LocalKind::Param { output: true, .. }) && !consumed.includes(&l.name))
         .map(|l| l.name.to_string())
         .collect();
-    if !reads.is_empty() || !unconsumed.is_empty() {
+    if changed || !unconsumed.is_empty() {
         decisions.extend(unconsumed.iter().map(|name| Decision::UnconsumedOutput { name: name.clone() }));
         decisions.extend(prune::dead_stores(&mut shader, &unconsumed));
     }

@@ -3,109 +3,203 @@
 use rustc_hash::FxHashSet;
 
 use super::Decision;
-use super::fold::{Reads, Scalar, constant, constant_in};
+use super::fold::{Reads, Scalar, constant_in};
+use crate::ir::stores::Stores;
 use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
 
-/// Decides every `if`, loop condition and `?:` whose condition is now constant.
-pub(super) fn decide(shader: &mut Shader, reads: &Reads) -> Vec<Decision> {
+/// Decides every `if`, loop condition and `?:` whose condition is now constant: because of a
+/// fixed parameter (reported as a decision), or because an inlined function was called with
+/// literal arguments (`hart_colormap(f, w, 1, ...)` testing its mode; not reported: it holds for
+/// every binding). Returns the decisions and whether anything was decided at all.
+pub(super) fn decide(shader: &mut Shader, reads: &Reads) -> (Vec<Decision>, bool) {
     let mut decisions = Vec::new();
+    let mut changed = false;
     // `?:` first: a decided one becomes the side it takes (the expression keeps its id).
     for i in 0..shader.exprs.len() {
         if let ExprKind::Select(c, a, b) = shader.exprs[i].kind
-            && let Some((taken, because)) = decided(shader, c, reads, &|_| None)
+            && let Some((taken, because)) = decided(shader, c, reads, &[], &|_| None)
         {
             let chosen = if taken { a } else { b };
             let kind = shader.expr(chosen).kind.clone();
             shader.exprs[i].kind = kind;
-            decisions.push(Decision::Branch { condition: shader.expr(c).span, taken, because });
+            changed = true;
+            if !because.is_empty() {
+                decisions.push(Decision::Branch { condition: shader.expr(c).span, taken, because });
+            }
         }
     }
+    let stores = crate::ir::stores::stores(shader);
     let body = std::mem::take(&mut shader.body);
-    shader.body = block(shader, body, reads, &mut decisions);
-    decisions
+    let mut pruner = Pruner { shader, reads, stores: &stores, decisions: &mut decisions, changed };
+    let mut dominating = Vec::new();
+    let body = pruner.block(body, &mut dominating);
+    let changed = pruner.changed;
+    shader.body = body;
+    (decisions, changed)
 }
 
-fn block(shader: &Shader, stmts: Block, reads: &Reads, decisions: &mut Vec<Decision>) -> Block {
-    let mut out = Vec::with_capacity(stmts.len());
-    // The constant values just stored into whole locals, in straight-line code: what a `for`
-    // loop's counter holds when its condition is first tested.
-    let mut known: Vec<(LocalId, Scalar)> = Vec::new();
-    for stmt in stmts {
-        if let Stmt::Store { place: Place::Local(l), value, .. } = &stmt {
-            known.retain(|(k, _)| k != l);
-            if let Some(v) = constant(shader, *value) {
-                known.push((*l, v));
+/// A local's value known at a point: every path there stored it, and no other store exists.
+/// `because` names the fixed parameters the value was computed from.
+#[derive(Clone, Debug)]
+struct Known {
+    local: LocalId,
+    value: Scalar,
+    because: Vec<String>,
+}
+
+struct Pruner<'a> {
+    shader: &'a Shader,
+    reads: &'a Reads,
+    /// The stores into each local, counted before any decision (a local stored once stays so).
+    stores: &'a [Stores],
+    decisions: &'a mut Vec<Decision>,
+    /// Whether anything was decided or left out.
+    changed: bool,
+}
+
+impl Pruner<'_> {
+    /// The block with its decided statements replaced by the side they take. `dominating` holds
+    /// the values of locals stored once, by a store that every statement from here on follows
+    /// (an inlined function's parameters, called with a fixed parameter or a literal): a
+    /// condition reading them inside the function is decided like one reading the parameter.
+    /// Statements after a `return`, `break` or `continue` that always runs are gone (a decided
+    /// `if` often leaves one).
+    fn block(&mut self, stmts: Block, dominating: &mut Vec<Known>) -> Block {
+        let shader = self.shader;
+        let mut out = Vec::with_capacity(stmts.len());
+        // The constant values just stored into whole locals, in straight-line code: what a `for`
+        // loop's counter holds when its condition is first tested.
+        let mut known: Vec<(LocalId, Scalar)> = Vec::new();
+        for stmt in stmts {
+            if leaves(&out) {
+                self.changed = true;
+                break;
             }
-            out.push(stmt);
-            continue;
-        }
-        // A loop whose first test fails, given the counter's value stored just before it.
-        let never_runs = match &stmt {
-            Stmt::Loop { cond: Some(cond), .. } => {
-                let first = |l: LocalId| known.iter().find(|(k, _)| *k == l).map(|(_, v)| *v);
-                decided(shader, *cond, reads, &first).filter(|(runs, _)| !runs).map(|(_, because)| because)
-            }
-            _ => None,
-        };
-        known.clear();
-        match stmt {
-            Stmt::If { cond, then, otherwise } => match decided(shader, cond, reads, &|_| None) {
-                Some((taken, because)) => {
-                    decisions.push(Decision::Branch { condition: shader.expr(cond).span, taken, because });
-                    let kept = if taken { then } else { otherwise };
-                    out.extend(block(shader, kept, reads, decisions));
+            if let Stmt::Store { place: Place::Local(l), value, .. } = &stmt {
+                let dominated = |l: LocalId| dominating.iter().find(|k| k.local == l).map(|k| k.value);
+                known.retain(|(k, _)| k != l);
+                if let Some(v) = constant_in(shader, *value, &dominated) {
+                    known.push((*l, v));
+                    if self.stores[l.0 as usize].count == 1 {
+                        let because = fixed_reads(shader, *value, self.reads, dominating);
+                        dominating.push(Known { local: *l, value: v, because });
+                    }
                 }
-                _ => out.push(Stmt::If {
+                out.push(stmt);
+                continue;
+            }
+            // A loop whose first test fails, given the counter's value stored just before it.
+            let never_runs = match &stmt {
+                Stmt::Loop { cond: Some(cond), .. } => {
+                    let first = |l: LocalId| {
+                        known
+                            .iter()
+                            .find(|(k, _)| *k == l)
+                            .map(|(_, v)| *v)
+                            .or_else(|| dominating.iter().find(|k| k.local == l).map(|k| k.value))
+                    };
+                    decided(shader, *cond, self.reads, dominating, &first)
+                        .filter(|(runs, _)| !runs)
+                        .map(|(_, because)| because)
+                }
+                _ => None,
+            };
+            known.clear();
+            let dominated = |l: LocalId| dominating.iter().find(|k| k.local == l).map(|k| k.value);
+            match stmt {
+                Stmt::If { cond, then, otherwise } => {
+                    match decided(shader, cond, self.reads, dominating, &dominated) {
+                        Some((taken, because)) => {
+                            self.changed = true;
+                            if !because.is_empty() {
+                                self.decisions.push(Decision::Branch {
+                                    condition: shader.expr(cond).span,
+                                    taken,
+                                    because,
+                                });
+                            }
+                            let kept = if taken { then } else { otherwise };
+                            // The side taken runs wherever the `if` stood: what it stores once
+                            // is known after it too.
+                            out.extend(self.block(kept, dominating));
+                        }
+                        _ => out.push(Stmt::If {
+                            cond,
+                            then: self.nested(then, dominating),
+                            otherwise: self.nested(otherwise, dominating),
+                        }),
+                    }
+                }
+                Stmt::Loop { cond: Some(cond), .. } if never_runs.is_some() => {
+                    let because = never_runs.unwrap_or_default();
+                    self.changed = true;
+                    if !because.is_empty() {
+                        self.decisions.push(Decision::Loop { condition: shader.expr(cond).span, because });
+                    }
+                }
+                Stmt::Loop { cond, body, step, span } => out.push(Stmt::Loop {
                     cond,
-                    then: block(shader, then, reads, decisions),
-                    otherwise: block(shader, otherwise, reads, decisions),
+                    body: self.nested(body, dominating),
+                    step: self.nested(step, dominating),
+                    span,
                 }),
-            },
-            Stmt::Loop { cond: Some(cond), .. } if never_runs.is_some() => {
-                let because = never_runs.unwrap_or_default();
-                decisions.push(Decision::Loop { condition: shader.expr(cond).span, because });
+                Stmt::Inline { function, body, span } => {
+                    // An inlined body runs where the call stands; its `return` leaves only it.
+                    let body = self.nested(body, dominating);
+                    out.push(Stmt::Inline { function, body, span })
+                }
+                Stmt::Illuminance { args, body } => {
+                    out.push(Stmt::Illuminance { args, body: self.nested(body, dominating) })
+                }
+                Stmt::Emit { solar, args, body } => {
+                    out.push(Stmt::Emit { solar, args, body: self.nested(body, dominating) })
+                }
+                other => out.push(other),
             }
-            Stmt::Loop { cond, body, step, span } => out.push(Stmt::Loop {
-                cond,
-                body: block(shader, body, reads, decisions),
-                step: block(shader, step, reads, decisions),
-                span,
-            }),
-            Stmt::Inline { function, body, span } => {
-                out.push(Stmt::Inline { function, body: block(shader, body, reads, decisions), span })
-            }
-            Stmt::Illuminance { args, body } => {
-                out.push(Stmt::Illuminance { args, body: block(shader, body, reads, decisions) })
-            }
-            Stmt::Emit { solar, args, body } => {
-                out.push(Stmt::Emit { solar, args, body: block(shader, body, reads, decisions) })
-            }
-            other => out.push(other),
         }
+        out
     }
-    out
+
+    /// A block that may not run, or may run again: what it learns stays inside it.
+    fn nested(&mut self, stmts: Block, dominating: &[Known]) -> Block {
+        let mut inner = dominating.to_vec();
+        self.block(stmts, &mut inner)
+    }
 }
 
-/// Condition `cond`'s value and the fixed parameters that decide it, when it is constant (with
-/// the locals `known` gives) and reads at least one fixed parameter.
+/// Whether a block ends in a jump that always runs: a `return`, `break` or `continue` at its top
+/// level (nothing after it in the block can run).
+fn leaves(block: &[Stmt]) -> bool {
+    matches!(block.last(), Some(Stmt::Return | Stmt::Break(_) | Stmt::Continue(_)))
+}
+
+/// Condition `cond`'s value and the fixed parameters that decide it (directly or through the
+/// `dominating` locals; none for a condition of literals), when it is constant with the locals
+/// `known` gives.
 fn decided(
     shader: &Shader,
     cond: ExprId,
     reads: &Reads,
+    dominating: &[Known],
     known: &dyn Fn(LocalId) -> Option<Scalar>,
 ) -> Option<(bool, Vec<String>)> {
     let Some(Scalar::Bool(value)) = constant_in(shader, cond, known) else { return None };
-    let because = fixed_reads(shader, cond, reads);
-    (!because.is_empty()).then_some((value, because))
+    Some((value, fixed_reads(shader, cond, reads, dominating)))
 }
 
-/// The fixed parameters expression `id` reads, sorted, each once.
-fn fixed_reads(shader: &Shader, id: ExprId, reads: &Reads) -> Vec<String> {
+/// The fixed parameters expression `id` reads, sorted, each once: directly, or through a local
+/// whose known value was computed from them.
+fn fixed_reads(shader: &Shader, id: ExprId, reads: &Reads, dominating: &[Known]) -> Vec<String> {
     let mut names = Vec::new();
     let mut stack = vec![id];
     while let Some(e) = stack.pop() {
         if let Some(name) = reads.get(&e) {
             names.push(name.clone());
+        }
+        if let ExprKind::Local(l) = shader.expr(e).kind
+            && let Some(k) = dominating.iter().find(|k| k.local == l)
+        {
+            names.extend(k.because.iter().cloned());
         }
         shader.expr(e).kind.for_each_operand(|o| stack.push(o));
     }

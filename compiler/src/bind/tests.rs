@@ -217,3 +217,77 @@ fn a_string_the_shader_writes_is_not_decided() {
     assert!(calls(&bound.shader).contains(&"texture".to_string()));
     assert!(branches(&bound).is_empty(), "{:?}", bound.decisions);
 }
+
+/// A library-style function choosing its pattern by a parameter, called twice deep with a
+/// shader parameter; its early returns leave the rest of its body behind them.
+const VARIANTS: &str = "
+float pick(point p; float variant)
+{
+    if (variant < 0.5)
+        return sin(p[0]);
+    if (variant < 1.5)
+        return exp(p[1]);
+    return 0.5;
+}
+
+float sample(point p; float variant, k)
+{
+    float d = pick(p, variant);
+    return k * d;
+}
+
+surface v(float variant = 0; float k = 1) {
+    Ci = sample(P, variant, k);
+}";
+
+#[test]
+fn a_fixed_parameter_decides_branches_inside_the_functions_it_is_passed_to() {
+    let original = shader(VARIANTS);
+    let all = calls(&original);
+    assert_eq!(all, ["exp", "sin"]);
+    let first = specialize_all(&original, &fixed(&[("variant", &[0.0])]));
+    // The first `if` is taken; its `return` leaves the rest of `pick` unreachable, so the second
+    // test is never decided: it is gone with the code after the return.
+    assert_eq!(branches(&first), [(true, vec!["variant".to_string()])]);
+    assert_eq!(calls(&first.shader), ["sin"]);
+    let second = specialize_all(&original, &fixed(&[("variant", &[1.0])]));
+    assert_eq!(
+        branches(&second),
+        [(false, vec!["variant".to_string()]), (true, vec!["variant".to_string()])]
+    );
+    assert_eq!(calls(&second.shader), ["exp"]);
+    let last = specialize_all(&original, &fixed(&[("variant", &[7.0])]));
+    assert!(calls(&last.shader).is_empty(), "{:?}", calls(&last.shader));
+    // `k` decides nothing: fixing it alone leaves every branch.
+    let k = specialize_all(&original, &fixed(&[("k", &[2.0])]));
+    assert!(branches(&k).is_empty(), "{:?}", k.decisions);
+    assert_eq!(calls(&k.shader), all);
+}
+
+#[test]
+fn a_variable_stored_in_one_branch_is_not_known_after_it() {
+    // `m` is stored once, but only when `flag` holds: after the `if` its value is not known, so
+    // the test of `m` stays.
+    let original = shader(
+        "surface b(float flag = 0; float variant = 0) {
+            float m;
+            if (flag > 0.5) { m = variant; }
+            if (m < 1) { Ci = sin(s); } else { Ci = Cs; }
+        }",
+    );
+    let bound = specialize_all(&original, &fixed(&[("variant", &[0.0])]));
+    assert!(branches(&bound).is_empty(), "{:?}", bound.decisions);
+    assert_eq!(calls(&bound.shader), ["sin"]);
+}
+
+#[test]
+fn a_literal_argument_decides_the_branches_it_reaches_without_a_report() {
+    // Nothing is fixed, yet `pick` is called with the literal 1: the test of its variant holds
+    // for every binding, so the branch goes and no decision names a parameter.
+    let src = VARIANTS.replace("Ci = sample(P, variant, k);", "Ci = sample(P, 1, k) + variant;");
+    let original = shader(&src);
+    assert_eq!(calls(&original), ["exp", "sin"]);
+    let bound = specialize_all(&original, &[]);
+    assert_eq!(calls(&bound.shader), ["exp"]);
+    assert!(bound.decisions.iter().all(|d| !matches!(d, Decision::Branch { .. })), "{:?}", bound.decisions);
+}

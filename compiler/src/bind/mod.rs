@@ -14,6 +14,7 @@ mod fold;
 mod prune;
 mod strings;
 
+use crate::ir::verify::{Pass, assert_valid};
 use crate::ir::{LocalKind, Shader};
 use crate::source::Span;
 
@@ -106,10 +107,14 @@ pub fn specialize(
 ) -> Bound {
     let mut shader = shader.clone();
     strings::propagate(&mut shader);
+    assert_valid(&shader, Pass::Bind("string variables"));
     let (mut decisions, mut reads) = fold::substitute(&mut shader, fixed);
+    assert_valid(&shader, Pass::Bind("fixed parameters"));
     fold::compare_strings(&mut shader, strings, &mut reads);
+    assert_valid(&shader, Pass::Bind("string comparisons"));
     if !reads.is_empty() {
         decisions.extend(prune::decide(&mut shader, &reads));
+        assert_valid(&shader, Pass::Bind("decided branches"));
     }
     let unconsumed: Vec<String> = shader
         .params
@@ -121,6 +126,7 @@ pub fn specialize(
     if !reads.is_empty() || !unconsumed.is_empty() {
         decisions.extend(unconsumed.iter().map(|name| Decision::UnconsumedOutput { name: name.clone() }));
         decisions.extend(prune::dead_stores(&mut shader, &unconsumed));
+        assert_valid(&shader, Pass::Bind("dead stores"));
     }
     Bound { shader, decisions }
 }

@@ -217,3 +217,28 @@ fn a_string_the_shader_writes_is_not_decided() {
     assert!(calls(&bound.shader).contains(&"texture".to_string()));
     assert!(branches(&bound).is_empty(), "{:?}", bound.decisions);
 }
+
+#[test]
+fn a_fixed_matrix_becomes_a_matrix_of_float_literals() {
+    // Sixteen floats, as the semantic stage builds `matrix (...)`: each part a `float` literal
+    // (they were made of the row type, `float4` literals of one component each).
+    let original = shader("surface m(matrix M = 1) {\n    Ci = color (comp(M, 0, 1));\n}\n");
+    let values: Vec<f64> = (0..16).map(f64::from).collect();
+    let bound = specialize_all(&original, &fixed(&[("M", &values)]));
+    crate::ir::verify::verify(&bound.shader, crate::ir::verify::Pass::Bind("test")).expect("valid IR");
+    let parts = bound
+        .shader
+        .exprs
+        .iter()
+        .find_map(|e| match &e.kind {
+            ExprKind::Construct(parts)
+                if e.ty == crate::ir::types::Type::of(crate::ir::types::Base::Matrix4) =>
+            {
+                Some(parts.clone())
+            }
+            _ => None,
+        })
+        .expect("the folded matrix");
+    assert_eq!(parts.len(), 16);
+    assert!(parts.iter().all(|p| bound.shader.expr(*p).ty == crate::ir::types::Type::FLOAT));
+}

@@ -1174,3 +1174,15 @@ fn a_declared_variable_stored_under_a_varying_condition_inside_its_life_is_still
         assert_eq!(found, [Code::ControlDependence], "{body}");
     }
 }
+
+#[test]
+fn a_long_chain_of_variables_takes_the_rate_of_its_start() {
+    // Each variable is inferred from the one before: rates must flow along the whole chain in
+    // program order, however long (they once flowed one link per round, for 64 rounds).
+    let mut body: Vec<String> = vec!["    float a0 = v;".into()];
+    body.extend((1..200).map(|i| format!("    float a{i} = a{} + 1;", i - 1)));
+    let body: Vec<&str> = body.iter().map(String::as_str).collect();
+    let s = shader(&stanford(&body));
+    assert_eq!(rate_of(&s, "a199"), Rate::VERTEX);
+    assert_eq!(stored_into(&s, "a199").rate, Rate::VERTEX);
+}

@@ -5,6 +5,9 @@
 //! program with a diagnostic; an internal error (E0799) on a program that checked clean is a bug,
 //! and so is a panic. The one E0799 that is not a bug is the WGSL translator's "cannot translate
 //! this yet" (a construct only the interpreter runs, such as `break 2`): it is a known limit.
+//! The IR is verified (`ir::verify`) after the semantic stage, `opt::prepare` and the split: the
+//! passes do so themselves in debug builds, and this target does it again so that an optimized
+//! fuzzing build (`cargo fuzz run -O`) checks it too.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -12,6 +15,7 @@ use patina_compiler::backend::cpu::{Binding, CpuProgram, LightBinding};
 use patina_compiler::backend::wgsl::{self, BoundLight};
 use patina_compiler::diag::{Code, Diagnostic};
 use patina_compiler::ir::Shader;
+use patina_compiler::ir::verify::{Pass, VerifyError, verify, verify_stages};
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
@@ -21,6 +25,13 @@ const NOT_YET: &str = "the WGSL backend cannot translate this yet";
 fn not_internal(stage: &str, d: &Diagnostic) {
     let known_limit = d.help.as_deref().is_some_and(|h| h.starts_with(NOT_YET));
     assert!(d.code != Code::Internal || known_limit, "{stage}: {}", d.message);
+}
+
+/// A verification failure is a compiler bug, as a panic is.
+fn verified(result: Result<(), VerifyError>) {
+    if let Err(e) = result {
+        panic!("{e}");
+    }
 }
 
 fuzz_target!(|data: &[u8]| {
@@ -36,8 +47,10 @@ fuzz_target!(|data: &[u8]| {
         .shaders
         .iter()
         .map(|s| {
+            verified(verify(s, Pass::Rates));
             let mut s = s.clone();
             patina_compiler::opt::prepare(&mut s);
+            verified(verify(&s, Pass::Prepare));
             s
         })
         .collect();
@@ -66,7 +79,10 @@ fuzz_target!(|data: &[u8]| {
             continue;
         }
         let stages = match patina_compiler::split::split(shader) {
-            Ok(stages) => stages,
+            Ok(stages) => {
+                verified(verify_stages(&stages));
+                stages
+            }
             Err(d) => {
                 not_internal("split", &d);
                 continue;

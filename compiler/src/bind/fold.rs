@@ -3,7 +3,7 @@
 use rustc_hash::FxHashMap;
 
 use super::{Decision, Fixed};
-use crate::ir::types::{Base, Rate};
+use crate::ir::types::{Base, Rate, Type};
 use crate::ir::{BinaryOp, Expr, ExprId, ExprKind, Literal, LocalKind, Shader, UnaryOp};
 
 /// The expressions that read a fixed parameter, with its name (for the reasons of decisions).
@@ -43,7 +43,9 @@ pub(super) fn substitute(shader: &mut Shader, fixed: &[Fixed]) -> (Vec<Decision>
             let kind = if f.value.len() == 1 {
                 ExprKind::Literal(literal(ty.base, f.value[0]))
             } else {
-                let element = crate::ir::build::element_type(ty);
+                // Every component is a float, as in `matrix (...)` or `color (...)`: one float
+                // per number (a matrix's row type would make sixteen rows of one number each).
+                let element = Type::FLOAT;
                 let parts = f
                     .value
                     .iter()

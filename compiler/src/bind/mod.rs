@@ -16,6 +16,7 @@ mod fold;
 mod prune;
 mod strings;
 
+use crate::ir::verify::{Pass, assert_valid};
 use crate::ir::{LocalKind, Shader};
 use crate::source::Span;
 
@@ -108,10 +109,14 @@ pub fn specialize(
 ) -> Bound {
     let mut shader = shader.clone();
     strings::propagate(&mut shader);
+    assert_valid(&shader, Pass::Bind("string variables"));
     let (mut decisions, mut reads) = fold::substitute(&mut shader, fixed);
+    assert_valid(&shader, Pass::Bind("fixed parameters"));
     fold::compare_strings(&mut shader, strings, &mut reads);
+    assert_valid(&shader, Pass::Bind("string comparisons"));
     let (decided, changed) = prune::decide(&mut shader, &reads);
     decisions.extend(decided);
+    assert_valid(&shader, Pass::Bind("decided branches"));
     let unconsumed: Vec<String> = shader
         .params
         .iter()
@@ -122,6 +127,7 @@ pub fn specialize(
     if changed || !unconsumed.is_empty() {
         decisions.extend(unconsumed.iter().map(|name| Decision::UnconsumedOutput { name: name.clone() }));
         decisions.extend(prune::dead_stores(&mut shader, &unconsumed));
+        assert_valid(&shader, Pass::Bind("dead stores"));
     }
     Bound { shader, decisions }
 }

@@ -290,4 +290,28 @@ fn a_literal_argument_decides_the_branches_it_reaches_without_a_report() {
     let bound = specialize_all(&original, &[]);
     assert_eq!(calls(&bound.shader), ["exp"]);
     assert!(bound.decisions.iter().all(|d| !matches!(d, Decision::Branch { .. })), "{:?}", bound.decisions);
+
+#[test]
+fn a_fixed_matrix_becomes_a_matrix_of_float_literals() {
+    // Sixteen floats, as the semantic stage builds `matrix (...)`: each part a `float` literal
+    // (they were made of the row type, `float4` literals of one component each).
+    let original = shader("surface m(matrix M = 1) {\n    Ci = color (comp(M, 0, 1));\n}\n");
+    let values: Vec<f64> = (0..16).map(f64::from).collect();
+    let bound = specialize_all(&original, &fixed(&[("M", &values)]));
+    crate::ir::verify::verify(&bound.shader, crate::ir::verify::Pass::Bind("test")).expect("valid IR");
+    let parts = bound
+        .shader
+        .exprs
+        .iter()
+        .find_map(|e| match &e.kind {
+            ExprKind::Construct(parts)
+                if e.ty == crate::ir::types::Type::of(crate::ir::types::Base::Matrix4) =>
+            {
+                Some(parts.clone())
+            }
+            _ => None,
+        })
+        .expect("the folded matrix");
+    assert_eq!(parts.len(), 16);
+    assert!(parts.iter().all(|p| bound.shader.expr(*p).ty == crate::ir::types::Type::FLOAT));
 }

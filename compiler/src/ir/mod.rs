@@ -8,6 +8,7 @@
 pub mod build;
 pub mod stores;
 pub mod types;
+pub mod verify;
 
 use smol_str::SmolStr;
 

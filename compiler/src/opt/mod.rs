@@ -14,9 +14,13 @@ pub mod textures;
 /// What every backend runs a checked shader through first: the footprints of environment lookups
 /// (`textures::footprints`, derivative consumers), derivatives, then texture lookups,
 /// then shadow-map lookups.
+///
+/// Each pass checks its own result in debug builds (`ir::verify`); the whole is checked once more
+/// for what the backends rely on, all three passes' guarantees at once.
 pub fn prepare(shader: &mut crate::ir::Shader) {
     textures::footprints(shader);
     derivs::differentiate(shader);
     textures::expand(shader);
     shadow::expand(shader);
+    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Prepare);
 }

@@ -87,6 +87,7 @@ pub fn expand(shader: &mut Shader) {
             e.rate = e.rate.join(rate);
         }
     }
+    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Shadows);
 }
 
 /// The `"name", value` pairs after the positional arguments.

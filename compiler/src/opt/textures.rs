@@ -113,6 +113,7 @@ pub fn expand(shader: &mut Shader) {
             e.rate = e.rate.join(rate);
         }
     }
+    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Textures);
 }
 
 /// RenderMan's channel selection, `texture("name"[k], ...)`: the texture's name and the first
@@ -165,6 +166,7 @@ pub fn footprints(shader: &mut Shader) {
             args.extend([name, width]);
         }
     }
+    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Footprints);
 }
 
 /// The value of option `name` among a lookup's trailing `"name", value` pairs (a numeric

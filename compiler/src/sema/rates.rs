@@ -41,6 +41,8 @@ struct Analysis<'s> {
     origins: Vec<Origin>,
     local_origins: Vec<Origin>,
     changed: bool,
+    /// The expressions before this one have their rates computed in this round.
+    cursor: usize,
     /// Index expressions that made a store depend on their rate (so messages can say "index").
     index_origins: rustc_hash::FxHashSet<Span>,
     /// Stores to check once rates are final: (place root, value, control rate, control origin, store span).
@@ -88,18 +90,28 @@ pub fn infer(shader: &mut Shader, diags: &mut Diagnostics) {
         local_origins,
         shader,
         changed: true,
+        cursor: 0,
         index_origins: Default::default(),
         checks: Vec::new(),
     };
-    let mut rounds = 0;
-    while a.changed && rounds < 64 {
+    // Each round that changes anything raises some local's rate, and a rate rises at most four
+    // times (three frequency steps and `perlight`), so the loop ends. Expression rates are
+    // recomputed in arena order as the walk reaches the statements that read them (`advance`), so
+    // a store sees the rates the stores before it in program order gave their variables: only what
+    // flows against program order (a value carried round a loop) takes another round. (Recomputing
+    // them all at the start of each round moved rates one variable per round, and a cap of 64
+    // rounds left longer chains with rates too low.) A statement may read an expression the cursor
+    // has not reached (a nested loop's condition, for an early exit): it then has its rate from
+    // the end of the round before, or from this first pass.
+    a.exprs();
+    while a.changed {
         a.changed = false;
         a.checks.clear();
-        a.exprs();
+        a.cursor = 0;
         let body = std::mem::take(&mut a.shader.body);
         a.block(&body, Rate::CONSTANT, None, false);
         a.shader.body = body;
-        rounds += 1;
+        a.advance(usize::MAX);
     }
     a.exprs();
     a.report(diags);
@@ -112,6 +124,45 @@ impl Analysis<'_> {
             let (rate, origin) = self.rate_of(i);
             self.shader.exprs[i].rate = rate;
             self.origins[i] = origin;
+        }
+    }
+
+    /// Recomputes the rates of the expressions from the cursor up to `last` (inclusive), from the
+    /// locals' rates as they are now.
+    fn advance(&mut self, last: usize) {
+        let end = last.saturating_add(1).min(self.shader.exprs.len());
+        while self.cursor < end {
+            let (rate, origin) = self.rate_of(self.cursor);
+            self.shader.exprs[self.cursor].rate = rate;
+            self.origins[self.cursor] = origin;
+            self.cursor += 1;
+        }
+    }
+
+    /// Brings the expressions `stmt` reads itself (its value, condition, indices or arguments) up
+    /// to date before the walk looks at their rates.
+    fn reach(&mut self, stmt: &Stmt) {
+        let mut last = None;
+        let mut see = |e: ExprId| last = last.max(Some(e.0 as usize));
+        match stmt {
+            Stmt::Store { place, value, .. } => {
+                see(*value);
+                let mut at = place;
+                while let Place::Index(inner, index) = at {
+                    see(*index);
+                    at = inner;
+                }
+            }
+            Stmt::Eval(id) | Stmt::If { cond: id, .. } | Stmt::Loop { cond: Some(id), .. } => see(*id),
+            Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => args.iter().for_each(|a| see(*a)),
+            Stmt::Loop { cond: None, .. }
+            | Stmt::Break(_)
+            | Stmt::Continue(_)
+            | Stmt::Return
+            | Stmt::Inline { .. } => {}
+        }
+        if let Some(last) = last {
+            self.advance(last);
         }
     }
 
@@ -185,6 +236,7 @@ impl Analysis<'_> {
     /// Walks statements under a control rate (conditions and loops enclosing them).
     fn block(&mut self, block: &Block, control: Rate, control_origin: Option<Span>, in_light_loop: bool) {
         for stmt in block {
+            self.reach(stmt);
             match stmt {
                 Stmt::Store { place, value, span } => {
                     self.store(place, *value, control, control_origin, *span, in_light_loop);

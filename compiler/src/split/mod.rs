@@ -110,7 +110,9 @@ impl Stages {
 /// Splits a shader that has been through `opt::derivs` into its stages. An error is an internal
 /// one: a value the placement put in a stage that cannot compute it.
 pub fn split(shader: &Shader) -> Result<Stages, Diagnostic> {
-    slice::split(shader, false)
+    let stages = slice::split(shader, false)?;
+    crate::ir::verify::assert_valid_stages(&stages);
+    Ok(stages)
 }
 
 /// As [`split`], with the host part folded into the GPU stages: the host hands nothing up, so
@@ -118,5 +120,7 @@ pub fn split(shader: &Shader) -> Result<Stages, Diagnostic> {
 /// program without Patina's interpreter can fill, and the vertex and fragment stages recompute
 /// what the host would have computed once per draw (the cost of needing no host code).
 pub fn split_folding_host(shader: &Shader) -> Result<Stages, Diagnostic> {
-    slice::split(shader, true)
+    let stages = slice::split(shader, true)?;
+    crate::ir::verify::assert_valid_stages(&stages);
+    Ok(stages)
 }

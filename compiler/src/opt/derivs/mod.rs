@@ -82,4 +82,5 @@ pub fn differentiate(shader: &mut Shader) {
         diff.replace(c, uv);
     }
     diff.b.shader.body = new_body;
+    crate::ir::verify::assert_valid(diff.b.shader, crate::ir::verify::Pass::Derivatives);
 }

@@ -199,7 +199,9 @@ pub const SIGNATURES: &[&str] = &[
     // RenderMan 15.7: texture mapping. The result type chooses between a channel and a colour;
     // the implicit filter region comes from screen derivatives.
     // ---------------------------------------------------------------------------------------------
-    "for T in float|color: T texture(string) [deriv]",
+    // The one-argument form reads `s` and `t` (`opt/textures.rs`): per fragment, as a lookup at
+    // varying coordinates is, never at the rate of its name alone.
+    "for T in float|color: T texture(string) [fragment]",
     "for T in float|color: T texture(string, float, float) [deriv]",
     // Explicit region: the four corners (s1, t1, ..., s4, t4).
     "for T in float|color: T texture(string, float, float, float, float, float, float, float, float)",

@@ -43,7 +43,7 @@ pub(super) fn substitute(shader: &mut Shader, fixed: &[Fixed]) -> (Vec<Decision>
             let kind = if f.value.len() == 1 {
                 ExprKind::Literal(literal(ty.base, f.value[0]))
             } else {
-                let element = crate::ir::build::element_type(ty);
+                let element = ty.element();
                 let parts = f
                     .value
                     .iter()

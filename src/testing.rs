@@ -27,8 +27,9 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use patina_compiler::backend::binding::{Binding, LightBinding};
 use patina_compiler::backend::cpu::scalar::Real;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, EvalError, Evaluator, LightBinding, SlotKind};
+use patina_compiler::backend::cpu::{CpuProgram, EvalError, Evaluator, SlotKind};
 use patina_compiler::ir::Shader;
 use patina_compiler::ir::types::Type;
 use patina_compiler::syntax::ast::ShaderKind;

@@ -185,7 +185,7 @@ fn eval_reports_a_runaway_loop_at_its_position() {
     // Issue 23: the help states the default budget, which a run without --budget also stops at.
     let help = String::from_utf8(patina(&["eval", "--help"]).stdout).unwrap();
     let line = help.lines().find(|l| l.contains("--budget")).unwrap_or_default();
-    let default = patina_compiler::backend::cpu::eval::DEFAULT_BUDGET;
+    let default = patina_compiler::backend::MAX_LOOP_ITERATIONS;
     assert!(line.contains(&format!("[default: {default}]")), "{line}");
     let out = patina(&["eval", file.to_str().unwrap()]);
     let stderr = String::from_utf8(out.stderr).unwrap();

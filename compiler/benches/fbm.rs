@@ -12,7 +12,8 @@ use std::hint::black_box;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
 /// mimalloc (what the `patina` binary uses), counting allocations and the peak of live bytes.

@@ -8,6 +8,7 @@
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::backend::wgsl::{self, BoundLight};
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::ast::ShaderKind;
@@ -57,7 +58,7 @@ fn compile(name: &str, text: &str, lights: &[Shader]) -> Option<Vec<String>> {
         let mut shader = shader.clone();
         patina_compiler::opt::prepare(&mut shader);
         let stages = patina_compiler::split::split(&shader).ok()?;
-        let program = wgsl::compile(&stages, &bound, &[]).ok()?;
+        let program = wgsl::compile(&stages, &bound, &[], &constant_defaults).ok()?;
         out.push(program.wgsl().ok()?);
     }
     Some(out)

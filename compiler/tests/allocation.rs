@@ -5,7 +5,8 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
 struct Counting;

@@ -11,7 +11,8 @@
 //! error is about h^2 |x'''| / 6 + eps |x| / h, below 1e-9 for these expressions; an error in a
 //! chain rule is of the order of the derivative itself.
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
 /// The screen derivatives of (u, v): a footprint that is neither axis-aligned nor unit.

@@ -1,7 +1,8 @@
 //! The CPU interpreter end to end: shaders compiled from source, evaluated at points, checked
 //! against values worked out by hand (or by an independent f64 computation in the test).
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding};
+use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
 /// Compiles the only shader of `source`, panicking with the rendered diagnostics on failure.

@@ -3,7 +3,8 @@
 //! or straightforward reimplementations written from the definitions (Foley and van Dam's colour
 //! algorithms, the spline bases' blending functions, the Fresnel equations in their angle form).
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::diag::Code;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 

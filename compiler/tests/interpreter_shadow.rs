@@ -4,7 +4,8 @@
 
 use std::sync::Arc;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, Texture};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, Texture};
 use patina_compiler::opt::shadow::{DEFAULT_SAMPLES, tap};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 

@@ -3,7 +3,8 @@
 
 use std::sync::Arc;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, Texture};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, Texture};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
 fn program(src: &str, binding: &Binding) -> CpuProgram {

@@ -3,7 +3,9 @@
 
 use std::time::{Duration, Instant};
 
-use patina_compiler::backend::wgsl::{self, BoundLight, MAX_LIGHTS, MAX_LOOP_ITERATIONS, compile_kernel};
+use patina_compiler::backend::MAX_LOOP_ITERATIONS;
+use patina_compiler::backend::defaults::constant_defaults;
+use patina_compiler::backend::wgsl::{self, BoundLight, MAX_LIGHTS, compile_kernel};
 use patina_compiler::diag::Diagnostic;
 use patina_compiler::syntax::preprocess::{MAX_FILE_SIZE, MAX_TOTAL_SOURCE, MemoryLoader};
 use patina_compiler::{Checked, check_source};
@@ -263,7 +265,6 @@ fn loops(module: &naga::Module) -> Vec<bool> {
 
 #[test]
 fn gpu_loops_with_data_dependent_trip_counts_are_capped_and_counting_loops_are_not() {
-    assert_eq!(MAX_LOOP_ITERATIONS, patina_compiler::backend::cpu::eval::DEFAULT_BUDGET);
     let checked = check(UNBOUNDED_LOOP);
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
     let mut shader = checked.program.shaders[0].clone();
@@ -309,8 +310,9 @@ fn more_lights_than_the_limit_are_refused_and_the_limit_itself_compiles() {
     let bound = |n: usize| -> Vec<BoundLight> {
         (0..n).map(|_| BoundLight { shader: &one, strings: vec![], categories: vec![] }).collect()
     };
-    assert!(wgsl::compile(&stages, &bound(MAX_LIGHTS), &[]).is_ok());
-    let d = wgsl::compile(&stages, &bound(MAX_LIGHTS + 1), &[]).expect_err("over the limit");
+    assert!(wgsl::compile(&stages, &bound(MAX_LIGHTS), &[], &constant_defaults).is_ok());
+    let d =
+        wgsl::compile(&stages, &bound(MAX_LIGHTS + 1), &[], &constant_defaults).expect_err("over the limit");
     assert_eq!(d.code.as_str(), "E0704");
     assert_eq!(d.message, "65 lights are bound to `lit`, over the limit of 64");
     assert!(surface.sources.text(d.primary_span()).starts_with("surface lit()"));

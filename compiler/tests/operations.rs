@@ -3,7 +3,8 @@
 //! from WGSL's definitions with Rust's own f32 and integer arithmetic, bit for bit; the
 //! transcendental functions are compared with f64 results within a stated tolerance.
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
 /// The specials grid.

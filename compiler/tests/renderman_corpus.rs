@@ -2,6 +2,7 @@
 //! here in a few lines of our own: contextual Stanford keywords, the optional parameter lists of the
 //! texture calls, `printf` and `format`, uniform `random()`, `option()`, `bake()` and Latin-1 files.
 
+use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::check_source;
 use patina_compiler::diag::{Severity, render_text};
 use patina_compiler::syntax::preprocess::MemoryLoader;
@@ -192,7 +193,7 @@ fn the_wgsl_backend_compiles_printf_uniform_random_option_and_bake() {
     let mut shader = checked.program.shaders[0].clone();
     patina_compiler::opt::prepare(&mut shader);
     let stages = patina_compiler::split::split(&shader).expect("splits");
-    let compiled = wgsl::compile(&stages, &[], &[]);
+    let compiled = wgsl::compile(&stages, &[], &[], &constant_defaults);
     assert!(compiled.is_ok(), "{:?}", compiled.err());
 }
 
@@ -213,7 +214,7 @@ fn string_variables_stored_in_straight_line_code_are_known_where_read() {
     let mut shader = bound(src);
     patina_compiler::opt::prepare(&mut shader);
     let stages = patina_compiler::split::split(&shader).expect("splits");
-    let compiled = wgsl::compile(&stages, &[], &[]);
+    let compiled = wgsl::compile(&stages, &[], &[], &constant_defaults);
     assert!(compiled.is_ok(), "{:?}", compiled.err());
     // A read in a loop that stores the variable later is left alone.
     let src = "surface s() {\n    uniform string g = \"x\";\n    uniform float i;\n    for (i = 0; i < 2; i += 1) {\n        Ci += match(\"x\", g);\n        g = \"y\";\n    }\n}\n";

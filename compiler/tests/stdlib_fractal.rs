@@ -15,8 +15,9 @@
 //!   extremes (offsets 0, ±1e4, ±1e30, distortions 0 and ±1e30), the multifractal's mean
 //!   converging to 0 with the octaves, the terrain smoother at sea level, continuity in octaves.
 
+use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::scalar::Real;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_test_support::Rng;
 /// Perlin's ImprovedNoise.java with the stdlib's one departure (the cell reduced modulo 256 in

@@ -13,8 +13,9 @@
 //! - zeros at the lattice points, range, continuity of the first derivative across cell faces,
 //!   finite results for extreme inputs, the period 256 beyond the range of `int`.
 
+use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::scalar::Real;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_test_support::Rng;
 /// Perlin's ImprovedNoise.java, ported independently of the stdlib's code.

@@ -12,8 +12,9 @@
 //! - the extremes (w = 0, tiny and 1e6; x = ±1e6, ±1e30; b, g = 0 and 1) give finite values,
 //!   w = 0 gives the unfiltered function exactly, and w = 1e6 gives the mean.
 
+use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::scalar::Real;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_test_support::Rng;
 

@@ -11,7 +11,9 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, LightBinding};
+use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::cpu::CpuProgram;
+use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::backend::wgsl::{self, BoundLight};
 use patina_compiler::diag::{Code, Diagnostic};
 use patina_compiler::ir::Shader;
@@ -93,7 +95,7 @@ fuzz_target!(|data: &[u8]| {
                 not_internal("interpreter (stage)", &d);
             }
         }
-        match wgsl::compile_object(&stages, displacement.as_ref(), &bound, &[]) {
+        match wgsl::compile_object(&stages, displacement.as_ref(), &bound, &[], &constant_defaults) {
             Ok(program) => {
                 if let Err(d) = program.wgsl() {
                     not_internal("WGSL writer", &d);

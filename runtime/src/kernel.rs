@@ -4,7 +4,8 @@
 
 use std::fmt;
 
-use patina_compiler::backend::cpu::{LightBinding, Texture};
+use patina_compiler::backend::binding::LightBinding;
+use patina_compiler::backend::cpu::Texture;
 use patina_compiler::backend::wgsl::interface::UniformSource;
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, KernelValue, Lowering, compile_kernel_lowered};
 use patina_compiler::diag::Diagnostic;

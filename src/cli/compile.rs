@@ -65,7 +65,8 @@ fn target(file: &Path, name: Option<&str>, include: &[PathBuf]) -> Option<(Shade
 /// An imager shader: compiled as the compute kernel the renderer runs over the finished image
 /// (one invocation per pixel), written as NAME.wgsl with NAME.json giving its buffers' layout.
 fn imager(args: &CompileArgs, name: &str) -> Result<ExitCode, String> {
-    use patina_compiler::backend::cpu::{Binding, CpuProgram};
+    use patina_compiler::backend::binding::Binding;
+    use patina_compiler::backend::cpu::CpuProgram;
     use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
     let text = patina_compiler::syntax::preprocess::read_source_file(&args.file)
         .map_err(|e| format!("cannot read `{}`: {e}", args.file.display()))?

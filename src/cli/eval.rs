@@ -2,7 +2,8 @@
 
 use std::process::ExitCode;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, EvalError, Evaluator, LightBinding, SlotKind};
+use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::cpu::{CpuProgram, EvalError, Evaluator, SlotKind};
 use patina_compiler::diag;
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::ast::ShaderKind;

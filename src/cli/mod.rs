@@ -304,7 +304,7 @@ pub struct EvalArgs {
     #[arg(long)]
     f64: bool,
     /// The most iterations any loop may run (the interpreter's default; docs/limits.md).
-    #[arg(long, value_name = "N", default_value_t = patina_compiler::backend::cpu::eval::DEFAULT_BUDGET)]
+    #[arg(long, value_name = "N", default_value_t = patina_compiler::backend::MAX_LOOP_ITERATIONS)]
     budget: u64,
     /// A directory to search for `#include` files.
     #[arg(short = 'I', value_name = "DIR")]

@@ -5,7 +5,9 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::CpuProgram;
+use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::backend::wgsl::{self, BoundLight, Lowering};
 use patina_compiler::bind::{Consumed, Fixed};
 use patina_compiler::diag::{Diagnostic, Severity};
@@ -233,6 +235,7 @@ impl Compiler {
             &bound,
             &surface.strings,
             self.lowering,
+            &constant_defaults,
         )
         .map_err(|d| internal(d, &surface))?;
         drop((bound, bound_displacement, bound_atmosphere));

@@ -195,7 +195,7 @@ impl<'s> Builder<'s> {
 
     /// Element `index` of an array, vector or matrix.
     pub fn index_by(&mut self, base: ExprId, index: ExprId) -> ExprId {
-        let ty = element_type(self.ty(base));
+        let ty = self.ty(base).element();
         self.push(ExprKind::Index(base, index), ty)
     }
 
@@ -234,16 +234,5 @@ fn matrix_product(a: Type, b: Type) -> Option<Type> {
         (Base::Matrix3, x) if x.is_triple() => Some(b),
         (Base::Matrix4, Base::Matrix4) | (Base::Matrix3, Base::Matrix3) => Some(a),
         _ => None,
-    }
-}
-
-/// The type of an element of `ty` (what indexing it gives).
-pub fn element_type(ty: Type) -> Type {
-    match (ty.array, ty.base) {
-        (Some(_), b) => Type::of(b),
-        (None, Base::Matrix4) => Type::of(Base::Float4),
-        (None, Base::Matrix3) => Type::of(Base::Float3),
-        (None, Base::String) => Type::STRING,
-        (None, _) => Type::FLOAT,
     }
 }

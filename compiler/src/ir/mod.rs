@@ -369,6 +369,15 @@ impl Shader {
     pub fn local(&self, id: LocalId) -> &Local {
         &self.locals[id.0 as usize]
     }
+
+    /// The type of what `place` stores into: its variable's, narrowed by each index.
+    pub fn place_type(&self, place: &Place) -> Type {
+        match place {
+            Place::Local(l) => self.local(*l).ty,
+            Place::Global(g) => Type::of(g.ty),
+            Place::Index(inner, _) => self.place_type(inner).element(),
+        }
+    }
 }
 
 /// Whether a light shader is ambient: a RenderMan-style light with no `illuminate` or `solar`

@@ -155,6 +155,18 @@ impl Type {
     pub fn is_array(self) -> bool {
         self.array.is_some()
     }
+
+    /// The type of an element of this type (what indexing it gives): an array's base type, a
+    /// matrix's row, a string's character (a string), or a vector's component.
+    pub fn element(self) -> Type {
+        match (self.array, self.base) {
+            (Some(_), b) => Type::of(b),
+            (None, Base::Matrix4) => Type::of(Base::Float4),
+            (None, Base::Matrix3) => Type::of(Base::Float3),
+            (None, Base::String) => Type::STRING,
+            (None, _) => Type::FLOAT,
+        }
+    }
 }
 
 impl fmt::Display for Type {

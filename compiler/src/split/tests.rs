@@ -2,7 +2,8 @@
 //! interpreter must give what the whole shader gives, and values must cross where expected.
 
 use super::{StageKind, Stages, split, split_folding_host};
-use crate::backend::cpu::{Binding, CpuProgram, Evaluator};
+use crate::backend::binding::Binding;
+use crate::backend::cpu::{CpuProgram, Evaluator};
 use crate::ir::{Shader, Stmt};
 use crate::syntax::preprocess::MemoryLoader;
 

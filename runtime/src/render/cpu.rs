@@ -4,9 +4,10 @@
 //! the seeds.
 
 use glam::Vec3;
+use patina_compiler::backend::POINT_INDEX;
 use patina_compiler::backend::cpu::exec::LANES;
 use patina_compiler::backend::cpu::{
-    CpuProgram, Evaluator, POINT_INDEX, lightsource_input, surface_flag_input, surface_input,
+    CpuProgram, Evaluator, lightsource_input, surface_flag_input, surface_input,
 };
 use patina_compiler::backend::wgsl::interface::Output;
 use patina_compiler::sema::globals;

@@ -5,6 +5,7 @@
 //! formula for formula, so that the CPU reference sees the inputs the GPU sees.
 
 use glam::{Mat3, Mat4, Vec3};
+use patina_compiler::backend::CLIP_INPUT;
 use patina_compiler::backend::wgsl::interface::{GeometryMatrix, Interface, UniformSource};
 
 use super::RenderError;
@@ -219,7 +220,7 @@ pub fn global_value(frame: &Frame, name: &str) -> Option<Vec<f64>> {
         "Ca" | "__ambient" => vec![0.0; 4],
         "time" | "dtime" => vec![0.0],
         "E" => vec![0.0; 3],
-        "clip" => f64s(&frame.clip),
+        CLIP_INPUT => f64s(&frame.clip),
         "__modelview" => rows(modelview),
         "__invmodelview" => rows(modelview.inverse()),
         "__modelview3" => rows3(Mat3::from_mat4(modelview)),

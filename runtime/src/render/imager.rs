@@ -8,7 +8,8 @@
 
 use std::path::Path;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, Texture};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, Texture};
 use patina_compiler::syntax::ast::ShaderKind;
 
 use super::RenderError;

@@ -9,7 +9,9 @@ use patina_compiler::bind::{Consumed, Decision, Fixed};
 use patina_compiler::source::SourceMap;
 
 use glam::{Mat4, Vec3, Vec4};
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, SlotKind};
+use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, SlotKind};
+use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::backend::wgsl::{self, BoundLight, GpuProgram, Lowering};
 use patina_compiler::ir::types::{Base, Type};
 use patina_compiler::ir::{ExprKind, Literal, Shader};
@@ -368,6 +370,7 @@ pub fn shaded_program(
         &bound,
         &loaded.strings,
         lowering,
+        &constant_defaults,
     )
     .map_err(|d| RenderError::Compile(d.message))?;
     let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };

@@ -39,7 +39,7 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Options { random: 64, seed: 0x5EED, budget: patina_compiler::backend::cpu::eval::DEFAULT_BUDGET }
+        Options { random: 64, seed: 0x5EED, budget: patina_compiler::backend::MAX_LOOP_ITERATIONS }
     }
 }
 

@@ -7,7 +7,8 @@
 //! with its parameters and `P`, `N`, `I`, `s`, `t` as inputs (`Cs` and `Os` white, not swept)
 //! and `Ci`, `Oi` as outputs.
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::CpuProgram;
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::ast::{FunctionDef, Item, Param, ShaderDef, ShaderKind, ShaderStyle, TypeName};
 use patina_compiler::syntax::preprocess::SourceLoader;

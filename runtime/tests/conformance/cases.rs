@@ -6,7 +6,7 @@
 #![allow(dead_code)]
 
 use super::harness::{self, Input, Tol};
-use patina_compiler::backend::cpu::LightBinding;
+use patina_compiler::backend::binding::LightBinding;
 
 /// The tolerance table: one entry per family of functions, each with the bound it rests on.
 ///

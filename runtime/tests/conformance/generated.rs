@@ -51,7 +51,10 @@ use crate::harness;
 use std::cell::RefCell;
 
 use crate::support::Rng;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, POINT_INDEX, SlotKind};
+use patina_compiler::backend::POINT_INDEX;
+use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, SlotKind};
+use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::backend::wgsl::{self, BoundLight, KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::ir::Shader;
 use patina_compiler::ir::types::Base;
@@ -279,7 +282,8 @@ fn render_module(surface: &Shader, lights: &[Shader]) -> Result<(), String> {
         .iter()
         .map(|l| BoundLight { shader: l, strings: Vec::new(), categories: Vec::new() })
         .collect();
-    wgsl::compile(&stages, &bound, &[]).map_err(|d| format!("the render path's module: {}", d.message))?;
+    wgsl::compile(&stages, &bound, &[], &constant_defaults)
+        .map_err(|d| format!("the render path's module: {}", d.message))?;
     Ok(())
 }
 

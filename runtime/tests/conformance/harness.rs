@@ -8,7 +8,8 @@
 //! same but whose inputs and outputs pass through f64 without rounding (an f32 run rounds integers
 //! above 2^24 on the way in and out).
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding, SlotKind};
+use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator, SlotKind};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, Lowering, compile_kernel_lowered};
 use patina_compiler::ir::types::{Base, Type};
 use patina_compiler::syntax::preprocess::MemoryLoader;
@@ -133,7 +134,7 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
                     (0..n)
                         .map(|point| {
                             // What `random()` hashes: give both backends the same point indices.
-                            if name == patina_compiler::backend::cpu::POINT_INDEX {
+                            if name == patina_compiler::backend::POINT_INDEX {
                                 return vec![(batch * points + point) as f64];
                             }
                             let v = values(&Input { name, ty: *ty, uniform: *uniform, batch, point });

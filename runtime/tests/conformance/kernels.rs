@@ -18,7 +18,7 @@
 use crate::cases::{Case, Dom, R2, UNIT, declare, mixes, sample, tol};
 use crate::harness::{Input, Spec, Tol};
 use crate::{cases, harness};
-use patina_compiler::backend::cpu::LightBinding;
+use patina_compiler::backend::binding::LightBinding;
 use patina_compiler::backend::wgsl::Lowering;
 use patina_runtime::gpu::{self, Gpu};
 

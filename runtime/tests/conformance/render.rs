@@ -55,7 +55,7 @@ use std::time::Instant;
 
 use crate::cases::{Case, Dom, declare, mixes};
 use crate::harness::Tol;
-use patina_compiler::backend::cpu::LightBinding;
+use patina_compiler::backend::binding::LightBinding;
 use patina_runtime::gpu::{self, Gpu};
 use patina_runtime::image::Image;
 use patina_runtime::render::{self, Backend, Options, Prepared};

@@ -13,7 +13,8 @@
 
 use crate::support;
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::CpuProgram;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Image, Thresholds};
 use patina_test_support::Rng;

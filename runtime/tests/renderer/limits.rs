@@ -1,8 +1,9 @@
 //! The device's limits and failures as errors with context (docs/limits.md): a render target over
 //! the texture limit, a texture over it, an unbounded loop on the GPU, a lost device.
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, EvalError, Evaluator};
-use patina_compiler::backend::wgsl::MAX_LOOP_ITERATIONS;
+use patina_compiler::backend::MAX_LOOP_ITERATIONS;
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, EvalError, Evaluator};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::{
     Address, Blend, Draw, Filter, GpuError, Target, TargetFormat, TextureData, TextureDimension,

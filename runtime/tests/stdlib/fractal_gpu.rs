@@ -13,7 +13,8 @@
 //!
 //! Needs a GPU adapter (lavapipe is enough); panics without one unless `PATINA_GPU=off`.
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;

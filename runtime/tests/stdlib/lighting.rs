@@ -8,8 +8,9 @@
 use crate::support;
 
 use crate::support::{Rng, assert_finite, extremes, worst};
+use patina_compiler::backend::binding::{Binding, LightBinding};
 use patina_compiler::backend::cpu::scalar::Real;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;

@@ -14,7 +14,8 @@
 //!   `POW_TOL` = 2e-5, absolute below 1 and relative above (gammacorrect of x > 1; measured: see
 //!   the output).
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;

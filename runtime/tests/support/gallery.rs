@@ -1,7 +1,8 @@
 //! Shared by the gallery tests (`runtime/tests/gallery*.rs`): a scene of `examples/scenes/` at a test
 //! size with parameter overrides, rendered on both backends and compared with the image thresholds.
 
-use patina_compiler::backend::cpu::{Binding, CpuProgram};
+use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::cpu::CpuProgram;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Comparison, Image, Thresholds, compare};
 use patina_runtime::render::{self, Backend, Lowering};

@@ -7,8 +7,9 @@
 
 pub mod gallery;
 
+use patina_compiler::backend::binding::{Binding, LightBinding};
 use patina_compiler::backend::cpu::scalar::Real;
-use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator, LightBinding};
+use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;

@@ -2,7 +2,8 @@
 //! uniform inputs, evaluate it at any number of points, read the outputs.
 //!
 //! ```
-//! use patina_compiler::backend::cpu::{Binding, CpuProgram, Evaluator};
+//! use patina_compiler::backend::binding::Binding;
+//! use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 //! use patina_compiler::syntax::preprocess::MemoryLoader;
 //!
 //! let checked = patina_compiler::check_source(
@@ -19,8 +20,10 @@
 
 use super::code::Node;
 use super::exec::{LANES, Machine, Stop, Texture};
-use super::lower::{self, Binding, Lowered, SlotKind};
+use super::lower::{self, Lowered, SlotKind};
 use super::scalar::Real;
+use crate::backend::MAX_LOOP_ITERATIONS;
+use crate::backend::binding::Binding;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::Shader;
 use crate::ir::types::Type;
@@ -181,18 +184,12 @@ enum Set<F> {
     Ints(Vec<u32>),
 }
 
-/// The iteration budget of each loop, unless changed with [`Evaluator::set_budget`]. It is the
-/// GPU's iteration cap too (`backend::wgsl::MAX_LOOP_ITERATIONS`), so that a loop the GPU cuts
-/// short is an error here; 65535 is also where lavapipe (llvmpipe's `LP_MAX_TGSI_LOOP_ITERATIONS`)
-/// stops a loop by itself, so on it the two caps agree.
-pub const DEFAULT_BUDGET: u64 = 65_535;
-
 impl<'p, F: Real> Evaluator<'p, F> {
     /// An evaluator with every input at its default: parameters at their declared defaults,
     /// `Cs` and `Os` white, named spaces the identity, everything else zero.
     pub fn new(program: &'p CpuProgram) -> Self {
         let code = &program.lowered.code;
-        let mut machine = Machine::new(code.files, DEFAULT_BUDGET);
+        let mut machine = Machine::new(code.files, MAX_LOOP_ITERATIONS);
         machine.textures = vec![Texture::default(); code.textures.len()];
         for &(r, x) in &code.float_constants {
             machine.floats.uniform[r as usize] = F::from_f64(x);
@@ -226,7 +223,9 @@ impl<'p, F: Real> Evaluator<'p, F> {
         Ok(())
     }
 
-    /// Changes the iteration budget of each loop.
+    /// Changes the iteration budget of each loop, by default [`MAX_LOOP_ITERATIONS`] (the GPU's
+    /// cap, so that a loop the GPU cuts short is an error here); past it the interpreter runs loops
+    /// the GPU cuts short.
     pub fn set_budget(&mut self, budget: u64) {
         self.machine.budget = budget;
     }
@@ -316,7 +315,7 @@ impl<'p, F: Real> Evaluator<'p, F> {
                 }
                 continue;
             }
-            if slot.name == lower::POINT_INDEX && self.set[i].is_none() && !slot.float {
+            if slot.name == crate::backend::POINT_INDEX && self.set[i].is_none() && !slot.float {
                 // Each point's index in this evaluation, unless the caller gives others.
                 let lanes = self.machine.ints.lanes_mut(slot.regs[0]);
                 for (lane, x) in lanes.iter_mut().enumerate() {

@@ -13,8 +13,4 @@ pub mod scalar;
 
 pub use eval::{CpuProgram, EvalError, Evaluator, SlotId, SlotInfo};
 pub use exec::Texture;
-pub use lower::{
-    Binding, CATEGORY_PARAM, LightBinding, POINT_INDEX, SlotKind, UNIFORM_RANDOM_POINT, lightsource_input,
-    surface_flag_input, surface_input,
-};
-pub(crate) use lower::{category_matches, element_type};
+pub use lower::{SlotKind, lightsource_input, surface_flag_input, surface_input};

@@ -137,13 +137,11 @@ impl Translator<'_> {
                 // the call site (one site per component, numbered in the same order), in u32
                 // arithmetic.
                 let point = if b.name == "random" {
-                    let var = self.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
+                    let var = self.mb.private(crate::backend::POINT_INDEX, Type::of(Base::Uint));
                     let p = self.pointer(var);
                     self.load(p)
                 } else {
-                    self.fb.add(Expression::Literal(naga::Literal::U32(
-                        crate::backend::cpu::UNIFORM_RANDOM_POINT,
-                    )))
+                    self.fb.add(Expression::Literal(naga::Literal::U32(crate::backend::UNIFORM_RANDOM_POINT)))
                 };
                 let parts: Vec<Value> = (0..ret.base.components())
                     .map(|_| {
@@ -625,7 +623,8 @@ mod tests {
         let mut shader = checked.program.shaders[0].clone();
         crate::opt::prepare(&mut shader);
         let stages = crate::split::split(&shader).map_err(|d| d.message)?;
-        let program = compile(&stages, &[], &[]).map_err(|d| d.message)?;
+        let program = compile(&stages, &[], &[], &crate::backend::defaults::constant_defaults)
+            .map_err(|d| d.message)?;
         let wgsl = program.wgsl().map_err(|d| d.message)?;
         naga::front::wgsl::parse_str(&wgsl).map_err(|e| e.emit_to_string(&wgsl))?;
         Ok(wgsl)

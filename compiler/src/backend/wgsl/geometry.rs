@@ -8,14 +8,11 @@ use naga::{BinaryOperator as Op, Expression, MathFunction as M, SwizzleComponent
 use super::body::{Translator, Value};
 use super::interface::UniformSource;
 use super::matrices::Rule;
+use crate::backend::CLIP_INPUT;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
 use crate::source::Span;
-
-/// The uniform that `depth` reads: near and far clipping distances in "current" (camera) units,
-/// named as the interpreter's input slot (`backend::cpu` `CLIP_SLOT`).
-pub(super) const CLIP_UNIFORM: &str = "clip";
 
 impl Translator<'_> {
     /// The matrix from "current" to `space` (`inverse`: back), from the uniform block.
@@ -302,11 +299,11 @@ impl Translator<'_> {
         self.length_parts(&off)
     }
 
-    /// `depth(p)`: `(z - near) / (far - near)`, near and far from the [`CLIP_UNIFORM`] uniform
+    /// `depth(p)`: `(z - near) / (far - near)`, near and far from the [`CLIP_INPUT`] uniform
     /// (an empty range counts as 1, as in the interpreter).
     pub(super) fn depth(&mut self, p: Value) -> Value {
         let ty = Type { base: Base::Float, array: Some(2) };
-        let clip = self.uniform_value(CLIP_UNIFORM, ty, UniformSource::Global { name: CLIP_UNIFORM.into() });
+        let clip = self.uniform_value(CLIP_INPUT, ty, UniformSource::Global { name: CLIP_INPUT.into() });
         // Uniform arrays of floats are padded to `vec4` elements.
         let near = self.at(clip, 0);
         let near = self.at(near, 0);

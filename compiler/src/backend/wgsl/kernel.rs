@@ -19,7 +19,7 @@ use super::body::{Translator, Value};
 use super::entry::seed_name;
 use super::func::FnBuilder;
 use super::module::ModuleBuilder;
-use crate::backend::cpu::LightBinding;
+use crate::backend::binding::LightBinding;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, Input, Shader};
@@ -167,7 +167,7 @@ pub fn compile_kernel_lowered(
     t.fb.push(Statement::If { condition: past, accept, reject: naga::Block::new() });
 
     // `random()` hashes the point's index, as the interpreter's default (an input may override).
-    let point = t.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
+    let point = t.mb.private(crate::backend::POINT_INDEX, Type::of(Base::Uint));
     let point = t.pointer(point);
     t.store(point, index);
     // What the interpreter gives a shader before its inputs: each parameter that is not an input
@@ -289,8 +289,8 @@ fn resolve(shader: &Shader, name: &str) -> Option<(Target, Type)> {
         let ty = if ty.base == Base::Point { Type::of(Base::Vector) } else { ty };
         return Some((Target::Seed(input, axis), ty));
     }
-    if name == crate::backend::cpu::POINT_INDEX {
-        return Some((Target::Private(crate::backend::cpu::POINT_INDEX), Type::of(Base::Uint)));
+    if name == crate::backend::POINT_INDEX {
+        return Some((Target::Private(crate::backend::POINT_INDEX), Type::of(Base::Uint)));
     }
     if name == super::entry::SCREEN_POSITION {
         return Some((Target::Private(super::entry::SCREEN_POSITION), Type::of(Base::Float4)));

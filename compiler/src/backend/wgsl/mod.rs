@@ -5,7 +5,12 @@
 //! - `func`: one naga function under construction (`Emit` ranges kept right).
 //! - `body`: statements and expressions; `builtins` and `geometry`: the built-in functions.
 //! - `entry`: the entry points (geometry, varyings, derivative seeds, lights, output).
-//! - `interface`: what the runtime binds and fills, as data.
+//! - `interface`: what the runtime binds and fills, as data; `params`: the parameters it lists,
+//!   with the defaults the caller's [`ParamDefaults`] computes.
+//!
+//! It does not import the interpreter (the `cpu` backend): what the two must agree on lives in
+//! `backend` beside them, and the one thing the interpreter computes for this backend, the
+//! parameters' constant defaults, is passed in.
 //!
 //! The module is handed to wgpu as naga IR (`ShaderSource::Naga`); [`GpuProgram::wgsl`] writes it
 //! as WGSL text for users.
@@ -31,18 +36,19 @@ mod values;
 
 use naga::Span as NSpan;
 
-use crate::backend::cpu::LightBinding;
+use crate::backend::binding::LightBinding;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::Shader;
 use crate::source::Span;
 use crate::split::Stages;
+pub use body::MAX_LIGHTS;
 use body::Translator;
-pub use body::{MAX_LIGHTS, MAX_LOOP_ITERATIONS};
 pub use entry::RANDOM_ROW;
 use interface::{INTERFACE_VERSION, Interface, Output, UniformSource};
 pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel, compile_kernel_lowered};
 pub use lowering::Lowering;
 use module::ModuleBuilder;
+pub use params::ParamDefaults;
 
 /// A light or displacement shader bound to a surface, with the values of its string parameters.
 #[derive(Clone, Debug)]
@@ -100,13 +106,15 @@ impl GpuProgram {
 pub use crate::ir::is_ambient;
 
 /// Compiles the stages of a surface shader with its bound lights into a validated module, in the
-/// exact lowering.
+/// exact lowering. `defaults` gives the interface the parameters' constant defaults
+/// (`backend::defaults::constant_defaults`, the interpreter's).
 pub fn compile(
     stages: &Stages,
     lights: &[BoundLight],
     strings: &[(String, String)],
+    defaults: &ParamDefaults,
 ) -> Result<GpuProgram, Diagnostic> {
-    compile_object(stages, None, lights, strings)
+    compile_object(stages, None, lights, strings, defaults)
 }
 
 /// As [`compile`], with a displacement shader run before the surface at each fragment (bump
@@ -116,8 +124,9 @@ pub fn compile_object(
     displacement: Option<&BoundLight>,
     lights: &[BoundLight],
     strings: &[(String, String)],
+    defaults: &ParamDefaults,
 ) -> Result<GpuProgram, Diagnostic> {
-    compile_shaded(stages, displacement, None, lights, strings, Lowering::Exact)
+    compile_shaded(stages, displacement, None, lights, strings, Lowering::Exact, defaults)
 }
 
 /// As [`compile_object`], with an atmosphere (volume) shader run after the surface at each
@@ -131,6 +140,7 @@ pub fn compile_shaded(
     lights: &[BoundLight],
     strings: &[(String, String)],
     lowering: Lowering,
+    defaults: &ParamDefaults,
 ) -> Result<GpuProgram, Diagnostic> {
     body::check_light_count(&stages.fragment, &lights.iter().map(|l| l.shader).collect::<Vec<_>>())?;
     let bindings: Vec<LightBinding> = lights
@@ -238,21 +248,21 @@ pub fn compile_shaded(
         needs_host: uniforms.iter().any(|u| matches!(u.source, UniformSource::Host { .. })),
         uniforms,
         uniform_size,
-        params: params::surface_parameters(stages, strings),
+        params: params::surface_parameters(stages, strings, defaults),
         lights: lights
             .iter()
             .map(|l| interface::LightInterface {
                 shader: l.shader.name.to_string(),
-                params: params::parameters(l.shader, &[], &l.strings),
+                params: params::parameters(l.shader, &[], &l.strings, defaults),
             })
             .collect(),
         displacement: displacement.map(|d| interface::LightInterface {
             shader: d.shader.name.to_string(),
-            params: params::parameters(d.shader, &[], &d.strings),
+            params: params::parameters(d.shader, &[], &d.strings, defaults),
         }),
         atmosphere: atmosphere.map(|a| interface::LightInterface {
             shader: a.shader.name.to_string(),
-            params: params::parameters(a.shader, &[], &a.strings),
+            params: params::parameters(a.shader, &[], &a.strings, defaults),
         }),
         attributes,
         varyings,

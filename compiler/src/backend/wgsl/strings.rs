@@ -1,20 +1,14 @@
 //! Strings: known when the shader is compiled, so `concat` and `match` are folded here and
-//! never reach the GPU. `match` uses the interpreter's own matcher (the same source file), so
-//! the two backends cannot disagree on a pattern.
+//! never reach the GPU. `match` uses the matcher the interpreter uses too (`backend::pattern`),
+//! so the two backends cannot disagree on a pattern.
 
 use smol_str::SmolStr;
 
 use super::body::{Translator, Value};
+use crate::backend::pattern;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::{ExprId, ExprKind};
 use crate::source::Span;
-
-/// The interpreter's pattern matcher, compiled a second time for this backend: its module is
-/// private to the interpreter's lowering, and sharing the file keeps one definition of what a
-/// pattern means (the duplicate is a private module with no types that could be confused).
-#[allow(clippy::duplicate_mod)]
-#[path = "../cpu/lower/pattern.rs"]
-mod pattern;
 
 impl Translator<'_> {
     /// The string a string-typed expression denotes: a literal, a string parameter (bound or its

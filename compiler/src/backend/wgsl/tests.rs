@@ -1,5 +1,6 @@
 //! The backend's own checks: modules validate, and their WGSL re-parses with naga's front end.
 
+use crate::backend::defaults::constant_defaults;
 use crate::backend::wgsl::{BoundLight, compile};
 use crate::syntax::preprocess::MemoryLoader;
 
@@ -15,7 +16,7 @@ fn program(src: &str, light_src: Option<&str>) -> super::GpuProgram {
         .flat_map(|c| c.program.shaders.iter())
         .map(|s| BoundLight { shader: s, strings: vec![], categories: vec![] })
         .collect();
-    match compile(&stages, &lights, &[]) {
+    match compile(&stages, &lights, &[], &constant_defaults) {
         Ok(p) => p,
         Err(d) => panic!("{}", d.message),
     }
@@ -64,7 +65,7 @@ fn every_example_shader_validates_and_reparses() {
             crate::opt::prepare(&mut s);
             let stages = crate::split::split(&s).unwrap();
             count += 1;
-            match compile(&stages, &lights, &[]) {
+            match compile(&stages, &lights, &[], &constant_defaults) {
                 Ok(p) => {
                     let wgsl = p.wgsl().unwrap();
                     if let Err(e) = naga::front::wgsl::parse_str(&wgsl) {
@@ -235,7 +236,7 @@ fn a_stanford_light_reading_pobj_needs_a_stanford_surface() {
     let light = crate::check_source("l.sl", light_src, &MemoryLoader::default());
     assert!(!light.has_errors(), "{:?}", light.diagnostics);
     let bound = [BoundLight { shader: &light.program.shaders[0], strings: vec![], categories: vec![] }];
-    let error = compile(&stages, &bound, &[]).expect_err("refused");
+    let error = compile(&stages, &bound, &[], &constant_defaults).expect_err("refused");
     assert_eq!(error.code, crate::diag::Code::NotExecutable);
     assert!(error.message.contains("`Pobj`") && error.message.contains("`m`"), "{}", error.message);
 }

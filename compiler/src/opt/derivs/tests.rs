@@ -4,7 +4,6 @@
 
 use super::analysis::dtype;
 use super::differentiate;
-use crate::ir::build::element_type;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, BinaryOp, Block, ExprId, ExprKind, Input, Literal, Place, Shader, Stmt, UnaryOp};
 use crate::sema::builtins::{self, RateRule};
@@ -163,15 +162,6 @@ fn root_name(shader: &Shader, place: &Place) -> String {
     }
 }
 
-/// The type a place holds.
-fn place_type(shader: &Shader, place: &Place) -> Type {
-    match place {
-        Place::Local(l) => shader.local(*l).ty,
-        Place::Global(g) => Type::of(g.ty),
-        Place::Index(inner, _) => element_type(place_type(shader, inner)),
-    }
-}
-
 /// Asserts that the expressions the pass built or changed (`before` is the shader it was given)
 /// are typed as the backends expect, that the expression graph has no cycle, and that the stores
 /// into shadows store values of the shadow's type.
@@ -228,7 +218,7 @@ fn well_typed(shader: &Shader, before: &Shader) {
                 }
             },
             ExprKind::FromSpace { value, .. } => e.ty == ty(*value),
-            ExprKind::Index(base, index) => e.ty == element_type(ty(*base)) && ty(*index).base.is_integer(),
+            ExprKind::Index(base, index) => e.ty == ty(*base).element() && ty(*index).base.is_integer(),
             ExprKind::Select(c, a, b) => ty(*c) == Type::BOOL && ty(*a) == e.ty && ty(*b) == e.ty,
             ExprKind::Builtin(b, args) => {
                 let types: Vec<Type> = args.iter().map(|&a| ty(a)).collect();
@@ -259,7 +249,7 @@ fn well_typed(shader: &Shader, before: &Shader) {
             && root_name(shader, place).starts_with('d')
             && root_name(shader, place).contains('(')
         {
-            assert_eq!(place_type(shader, place), ty(*value), "store into {}", root_name(shader, place));
+            assert_eq!(shader.place_type(place), ty(*value), "store into {}", root_name(shader, place));
         }
     }
 }

@@ -2,8 +2,9 @@
 //! operations, the sums over the bound lights, and the geometric family (in `geometry`).
 
 use super::expr::pick;
-use super::{Lower, POINT_INDEX, Val};
+use super::{Lower, Val};
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, PrintArg, Reg, Ternary, Unary};
+use crate::backend::{POINT_INDEX, UNIFORM_RANDOM_POINT};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
@@ -132,10 +133,8 @@ impl Lower<'_> {
                     (0..n)
                         .map(|_| {
                             self.random_sites += 1;
-                            let x = crate::backend::cpu::exec::random(
-                                crate::backend::cpu::UNIFORM_RANDOM_POINT,
-                                self.random_sites,
-                            );
+                            let x =
+                                crate::backend::cpu::exec::random(UNIFORM_RANDOM_POINT, self.random_sites);
                             self.emit.float(x)
                         })
                         .collect()

@@ -16,16 +16,13 @@
 //! `pattern` (`match`), and holds `fresnel`, `ptlined`, the point `rotate` and `depth`.
 
 use super::{Lower, Val};
+use crate::backend::CLIP_INPUT;
 use crate::backend::cpu::code::{Binary, Compare, Reg, Ternary, Unary};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::ExprId;
 use crate::ir::types::{Base, Type};
 use crate::sema::builtins::Builtin;
 use crate::source::Span;
-
-/// The caller-supplied near and far clipping distances that `depth` normalizes by: a slot of two
-/// uniform floats, `(near, far)`, in "camera" (here also "current") space units.
-pub const CLIP_SLOT: &str = "clip";
 
 /// How `transform` treats a three-component value.
 #[derive(Copy, Clone, PartialEq, Eq)]
@@ -199,7 +196,7 @@ impl Lower<'_> {
             "spline" => self.spline(vals, ret.base.components(), span)?,
             "match" => {
                 let (Val::Str(pattern), Val::Str(subject)) = (&vals[0], &vals[1]) else { return Ok(None) };
-                match super::pattern::search(pattern, subject) {
+                match crate::backend::pattern::search(pattern, subject) {
                     Ok(found) => Val::Float(vec![self.emit.float(if found { 1.0 } else { 0.0 })]),
                     Err(why) => {
                         return Err(Diagnostic::error(
@@ -263,10 +260,10 @@ impl Lower<'_> {
     }
 
     /// `depth(p)`: `(z - near) / (far - near)` for z in camera space, which the interpreter takes
-    /// to be "current". Near and far come from the [`CLIP_SLOT`] input; an empty range (among them
+    /// to be "current". Near and far come from the [`CLIP_INPUT`] input; an empty range (among them
     /// the evaluator's default of zeros) counts as 1, so that an unset slot gives plain z.
     fn depth(&mut self, z: Reg) -> Reg {
-        let clip = self.named_input(CLIP_SLOT, Type { base: Base::Float, array: Some(2) }, true);
+        let clip = self.named_input(CLIP_INPUT, Type { base: Base::Float, array: Some(2) }, true);
         let (near, far) = (clip[0], clip[1]);
         let range = self.emit.binary(Binary::Sub, far, near);
         let (zero, one) = (self.emit.float(0.0), self.emit.float(1.0));

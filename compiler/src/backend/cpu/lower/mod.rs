@@ -12,81 +12,18 @@ mod curves;
 mod emit;
 mod expr;
 mod geometry;
-mod pattern;
 mod stmt;
 
 use rustc_hash::FxHashMap;
 use smol_str::SmolStr;
 
+use crate::backend::binding::Binding;
 use crate::backend::cpu::code::{Code, Node, Reg};
 use crate::diag::Diagnostic;
 use crate::ir::types::{Base, Frequency, Type};
 use crate::ir::{Axis, ExprId, ExprKind, Input, LocalId, LocalKind, Place, Shader, Stmt};
 use crate::sema::globals::Global;
 pub(crate) use emit::{Emitter, Val};
-pub(crate) use stmt::{category_matches, element_type};
-
-/// The input `random()` hashes with its call site: by default each point's index in the
-/// evaluation; a renderer gives the pixel (x + 65536 y), as the GPU computes it.
-pub const POINT_INDEX: &str = "point_index";
-
-/// The point index `random()` hashes where a uniform value is wanted (`__uniform_random`): one
-/// fixed index, so every point of a draw gets the same value (both backends).
-pub const UNIFORM_RANDOM_POINT: u32 = 0xffff_ffff;
-
-/// What the program is compiled for: the decisions that change its code.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Binding {
-    /// The lights, in order: `illuminance` and the light sums run over them.
-    pub lights: Vec<LightBinding>,
-    /// Values of `string` parameters (texture and space names), by parameter name.
-    pub strings: Vec<(String, String)>,
-}
-
-/// One bound light.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct LightBinding {
-    /// An ambient light: summed by `ambient()`, skipped by `illuminance` and the other sums.
-    pub ambient: bool,
-    /// The categories it belongs to (`illuminance("category", ...)` selects on them).
-    pub categories: Vec<String>,
-    /// Its parameters, by name and type: what `lightsource("name", v)` can read from it.
-    pub params: Vec<(SmolStr, Type)>,
-}
-
-/// The light parameter that names a light's categories (RenderMan's convention).
-pub const CATEGORY_PARAM: &str = "__category";
-
-impl LightBinding {
-    /// The binding of light shader `light` whose string parameters have the values `strings`
-    /// (the others their literal defaults): ambient when it emits no light, in the categories
-    /// its `__category` parameter lists (comma-separated), with its parameters for `lightsource`.
-    pub fn of(light: &Shader, strings: &[(String, String)]) -> LightBinding {
-        let params: Vec<(SmolStr, Type)> =
-            light.params.iter().map(|p| (light.local(*p).name.clone(), light.local(*p).ty)).collect();
-        let category =
-            light.params.iter().map(|p| light.local(*p)).find(|l| l.name == CATEGORY_PARAM).and_then(|l| {
-                match strings.iter().find(|(n, _)| n == CATEGORY_PARAM) {
-                    Some((_, v)) => Some(v.clone()),
-                    None => match l.kind {
-                        LocalKind::Param { default: Some(d), .. } => match &light.expr(d).kind {
-                            ExprKind::Literal(crate::ir::Literal::String(s)) => Some(s.to_string()),
-                            _ => None,
-                        },
-                        _ => None,
-                    },
-                }
-            });
-        let categories = category
-            .iter()
-            .flat_map(|c| c.split(','))
-            .map(str::trim)
-            .filter(|c| !c.is_empty())
-            .map(String::from)
-            .collect();
-        LightBinding { ambient: crate::ir::is_ambient(light), categories, params }
-    }
-}
 
 /// What a slot of registers holds, for the caller.
 #[derive(Clone, Debug, PartialEq)]

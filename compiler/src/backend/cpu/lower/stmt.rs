@@ -2,6 +2,7 @@
 //! constructs, unrolled over the binding's lights.
 
 use super::{Lower, Val};
+use crate::backend::binding::category_matches;
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, Node, Reg, Unary};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::types::{Base, Type};
@@ -138,18 +139,10 @@ impl Lower<'_> {
             Place::Local(id) => Ok(whole(self.local(*id))),
             Place::Global(g) => Ok(whole(self.global(g))),
             Place::Index(inner, index) => {
-                let ty = self.place_type(inner);
+                let ty = self.shader.place_type(inner);
                 let a = self.access(inner)?;
                 self.index_access(a, ty, *index)
             }
-        }
-    }
-
-    fn place_type(&self, place: &Place) -> Type {
-        match place {
-            Place::Local(id) => self.shader.local(*id).ty,
-            Place::Global(g) => Type::of(g.ty),
-            Place::Index(inner, _) => element_type(self.place_type(inner)),
         }
     }
 
@@ -160,7 +153,7 @@ impl Lower<'_> {
         ty: Type,
         index: ExprId,
     ) -> Result<Access, Diagnostic> {
-        let elem = element_type(ty);
+        let elem = ty.element();
         let width = super::layout(elem).map_or(1, |(_, n)| n);
         let len = (a.width / width.max(1)).max(1);
         if let Some(k) = self.constant_index(index) {
@@ -362,24 +355,4 @@ fn whole(v: Val) -> Access {
         _ => Vec::new(),
     };
     Access { width: root.len() as u32, root, float, offset: 0, dynamic: None }
-}
-
-/// The type of `x[i]` for `x` of type `ty`.
-pub(crate) fn element_type(ty: Type) -> Type {
-    match (ty.array, ty.base) {
-        (Some(_), b) => Type::of(b),
-        (None, Base::Matrix4) => Type::of(Base::Float4),
-        (None, Base::Matrix3) => Type::of(Base::Float3),
-        (None, Base::String) => Type::STRING,
-        _ => Type::FLOAT,
-    }
-}
-
-/// RenderMan's category selection: a light matches `"name"` when it is in that category, and
-/// `"-name"` when it is not.
-pub(crate) fn category_matches(selector: &str, categories: &[String]) -> bool {
-    match selector.strip_prefix('-') {
-        Some(name) => !categories.iter().any(|c| c == name),
-        None => selector.split(',').any(|s| categories.iter().any(|c| c == s.trim())),
-    }
 }

@@ -2,16 +2,10 @@
 //! an error, so every loop whose trip count is not known at compile time counts its iterations
 //! and is left after [`MAX_LOOP_ITERATIONS`] of them (docs/limits.md).
 
-use crate::backend::cpu::eval::DEFAULT_BUDGET;
+use crate::backend::MAX_LOOP_ITERATIONS;
 use crate::ir::stores::Stores;
 use crate::ir::types::Base;
 use crate::ir::{BinaryOp, Block, ExprId, ExprKind, Literal, Place, Shader, Stmt};
-
-/// The most times one execution of a loop runs its body on the GPU; at the next iteration whose
-/// condition holds, the loop is left as if the condition had failed. It is the interpreter's
-/// default iteration budget, so a loop cut short on the GPU is error E0702 in the interpreter
-/// (which can report it) and every loop that ends by itself runs alike on both.
-pub const MAX_LOOP_ITERATIONS: u64 = DEFAULT_BUDGET;
 
 /// The number of iterations of a counting loop known at compile time: `before` (the statement
 /// before the loop) stores a literal into a scalar `int` or `float` counter, the condition compares

@@ -18,8 +18,6 @@ mod bound;
 mod expr;
 mod operators;
 
-pub use bound::MAX_LOOP_ITERATIONS;
-
 /// The most lights one shader may be bound to: light loops and light sums are unrolled over the
 /// bound lights, and each bound light adds its shader and its parameters to the module.
 pub const MAX_LIGHTS: usize = 64;
@@ -40,7 +38,8 @@ pub(crate) fn check_light_count(surface: &Shader, lights: &[&Shader]) -> Result<
 
 use super::func::FnBuilder;
 use super::module::{ModuleBuilder, sanitize};
-use crate::backend::cpu::LightBinding;
+use crate::backend::MAX_LOOP_ITERATIONS;
+use crate::backend::binding::{LightBinding, category_matches};
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind, LocalId, Place, Shader, Stmt};
@@ -435,7 +434,7 @@ impl<'a> Translator<'a> {
                 Ok(self.pointer(var))
             }
             Place::Index(inner, index) => {
-                let ty = place_type(self.shader, inner);
+                let ty = self.shader.place_type(inner);
                 let base = self.place(inner)?;
                 let i = self.index(*index, ty)?;
                 Ok(self.fb.add(Expression::Access { base, index: i }))
@@ -594,19 +593,4 @@ pub(crate) fn variable_names(shader: &Shader, prefix: &str) -> FxHashMap<LocalId
             (LocalId(i as u32), format!("{prefix}{name}"))
         })
         .collect()
-}
-
-/// The type of a place.
-fn place_type(shader: &Shader, place: &Place) -> Type {
-    match place {
-        Place::Local(l) => shader.local(*l).ty,
-        Place::Global(g) => Type::of(g.ty),
-        Place::Index(inner, _) => crate::backend::cpu::element_type(place_type(shader, inner)),
-    }
-}
-
-/// Whether a light's categories match an `illuminance` category selector (`"a,b"`: any of
-/// them; `"-a"`: not in a), as the interpreter decides.
-fn category_matches(selector: &str, categories: &[String]) -> bool {
-    crate::backend::cpu::category_matches(selector, categories)
 }

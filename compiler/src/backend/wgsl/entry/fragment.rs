@@ -54,7 +54,7 @@ pub(super) fn fragment_entry(
         let row = t.fb.add(Expression::Literal(naga::Literal::U32(RANDOM_ROW)));
         let y = t.binary(naga::BinaryOperator::Multiply, y, row);
         let point = t.binary(naga::BinaryOperator::Add, x, y);
-        let var = t.mb.private(crate::backend::cpu::POINT_INDEX, Type::of(Base::Uint));
+        let var = t.mb.private(crate::backend::POINT_INDEX, Type::of(Base::Uint));
         let p = t.pointer(var);
         t.store(p, point);
     }

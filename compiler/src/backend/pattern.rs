@@ -7,6 +7,9 @@
 //! `*`, `+` and `?` after one item, `^` at the start and `$` at the end as anchors, and `\` to make
 //! the next character literal. Groups, alternation and counted repetitions are refused, not
 //! guessed at.
+//!
+//! Both backends fold `match` with this one matcher (its strings are known to both when they
+//! lower the call), so they cannot disagree on what a pattern means.
 
 /// One item of a pattern.
 #[derive(Clone, Debug, PartialEq)]

@@ -12,7 +12,6 @@
 
 mod body;
 mod builtins;
-mod colour;
 mod curves;
 mod entry;
 mod func;

@@ -26,7 +26,26 @@ pub fn source(name: &str) -> Option<&'static str> {
 /// The built-in functions whose implementations are written in the language, in
 /// `compiler/stdlib/builtins.sl` (as `__NAME_RESULT` overloaded by parameter types).
 pub const LIBRARY_BUILTINS: &[&str] =
-    &["noise", "snoise", "pnoise", "cellnoise", "diffuse", "specular", "phong", "specularbrdf"];
+    &["noise", "snoise", "pnoise", "cellnoise", "diffuse", "specular", "phong", "specularbrdf", "ctransform"];
+
+/// The colour spaces (docs/builtins.md), converted by `compiler/stdlib/builtins.sl` for
+/// `ctransform` and the casts `color "space" (a, b, c)`.
+pub const COLOUR_SPACES: &[&str] = &["rgb", "hsv", "hsl", "xyz", "XYZ", "xyY", "YIQ"];
+
+/// Checks a colour space name that only a backend knows (a string parameter's bound value or
+/// default, read by `ctransform`): names given as literals are checked by the semantic stage.
+pub fn check_colour_space(name: &str, span: crate::source::Span) -> Result<(), crate::diag::Diagnostic> {
+    if COLOUR_SPACES.contains(&name) {
+        return Ok(());
+    }
+    Err(crate::diag::Diagnostic::error(
+        crate::diag::Code::UnknownSpace,
+        format!("unknown colour space \"{name}\""),
+        span,
+        "in this conversion",
+    )
+    .with_note(format!("the colour spaces are {}", COLOUR_SPACES.join(", "))))
+}
 
 /// The file that implements the library built-ins (shown as `<stdlib>/builtins.sl`); it is not
 /// for `#include`.
@@ -47,14 +66,15 @@ pub fn is_library_builtin(name: &str) -> bool {
     LIBRARY_BUILTINS.contains(&name)
 }
 
-/// Whether any file in `sources` contains the name of a library built-in as a word (comments
-/// included: a false positive costs only a parse).
+/// Whether any file in `sources` contains the name of a library built-in, or of a colour space
+/// other than RGB (a cast `color "hsv" (h, s, v)` is converted by the library), as a word
+/// (comments included: a false positive costs only a parse).
 pub fn mentions_library_builtins(sources: &crate::source::SourceMap) -> bool {
     let is_word = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
     // The library's own modules call their functions directly, and mention `noise` in comments.
     sources.files().filter(|(_, file)| !file.name.starts_with(PREFIX)).any(|(_, file)| {
         let text = file.text.as_bytes();
-        LIBRARY_BUILTINS.iter().any(|name| {
+        LIBRARY_BUILTINS.iter().chain(&COLOUR_SPACES[1..]).any(|name| {
             file.text.match_indices(name).any(|(at, _)| {
                 let end = at + name.len();
                 (at == 0 || !is_word(text[at - 1])) && (end == text.len() || !is_word(text[end]))

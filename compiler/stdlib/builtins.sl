@@ -140,3 +140,181 @@ color __specularbrdf_color(vector L; normal N; vector V; float roughness)
 {
     return rm_specularbrdf(L, N, V, roughness);
 }
+
+// Colour spaces: `ctransform` and the casts `color "space" (a, b, c)` (the semantic stage inlines
+// _patina_to_rgb for a cast), every conversion through linear RGB. The spaces are RenderMan's
+// (RI 3.2, section 11.1 and 15.3): "rgb"; "hsv" and "hsl" (Smith 1978; Foley and van Dam, section
+// 13.3), hue a fraction of the full circle (0 red, 1/3 green, 2/3 blue; it wraps); "xyz" = "XYZ",
+// CIE XYZ of linear RGB with the Rec. 709 primaries and the D65 white (no transfer curve: shading
+// colours are linear); "xyY", chromaticity and luminance of the same XYZ; "YIQ", NTSC luminance
+// and chrominance (Foley and van Dam, eq. 13.36).
+//
+// A space name given as a literal decides the `if`s below when the call is inlined, so a shader
+// runs only its own conversion; a name known only to the backends (a string parameter's value)
+// is decided by them, or by binding. The piecewise parts (hue sextants, black, grey) are selects,
+// both sides computed. The matrices are exact in f64: RGB to XYZ derived from the chromaticities
+// (x / y, 1, (1 - x - y) / y per primary, scaled so that RGB white is D65 with Y = 1), the
+// inverses by the adjugate, written out with every digit; docs/stdlib/color.md has the checks.
+
+#define PATINA_ROW(a, b, c, v) ((a) * (v)[0] + (b) * (v)[1] + (c) * (v)[2])
+
+color _patina_rgb_to_xyz(color c)
+{
+    return color(PATINA_ROW(0.4123907992659593, 0.357584339383878, 0.1804807884018343, c),
+                 PATINA_ROW(0.21263900587151024, 0.715168678767756, 0.07219231536073371, c),
+                 PATINA_ROW(0.01933081871559182, 0.11919477979462598, 0.9505321522496607, c));
+}
+
+color _patina_xyz_to_rgb(color c)
+{
+    return color(PATINA_ROW(3.2409699419045226, -1.537383177570094, -0.49861076029300344, c),
+                 PATINA_ROW(-0.9692436362808796, 1.8759675015077204, 0.0415550574071756, c),
+                 PATINA_ROW(0.05563007969699363, -0.2039769588889765, 1.0569715142428784, c));
+}
+
+// YIQ's I and Q rows sum to zero, so greys have no chrominance; the inverse is the exact inverse
+// of this matrix rather than a published table, so that a round trip is exact up to rounding.
+color _patina_rgb_to_yiq(color c)
+{
+    return color(PATINA_ROW(0.299, 0.587, 0.114, c), PATINA_ROW(0.596, -0.275, -0.321, c),
+                 PATINA_ROW(0.212, -0.523, 0.311, c));
+}
+
+color _patina_yiq_to_rgb(color c)
+{
+    return color(PATINA_ROW(1.0000000000000002, 0.9556880603611568, 0.6198580944563707, c),
+                 PATINA_ROW(1.0, -0.27158179694405865, -0.6468738161384013, c),
+                 PATINA_ROW(1.0, -1.108177326682662, 1.7050645599191816, c));
+}
+
+// The hue (in turns, in [0, 1); 0 for greys), the largest and smallest channel and the chroma
+// (their difference) of an RGB colour. The hue is the sextant pair of the largest channel:
+// (g - b) / C near red, 2 + (b - r) / C near green, 4 + (r - g) / C near blue; red wins ties,
+// then green. A grey's divisions give NaN, which the last select leaves out.
+void _patina_hue_of(color c; output float hue; output float top; output float bottom;
+                    output float chroma)
+{
+    float r = c[0], g = c[1], b = c[2];
+    top = max(max(r, g), b);
+    bottom = min(min(r, g), b);
+    chroma = top - bottom;
+    float near_r = (g - b) / chroma + 0, near_g = (b - r) / chroma + 2, near_b = (r - g) / chroma + 4;
+    float h = top == r ? near_r : (top == g ? near_g : near_b);
+    h = mod(h, 6) / 6;
+    hue = chroma > 0 ? h : 0;
+}
+
+// One channel from a hue: top - chroma * clamp(min(k, 4 - k), 0, 1) with k = (6 h + n) mod 6 and
+// n = 5, 3, 1 for red, green, blue: the hexcone's six sextants as one piecewise-linear ramp.
+float _patina_hue_channel(float h6, n, top, chroma)
+{
+    float k = mod(h6 + n, 6);
+    return top - chroma * clamp(min(k, 4 - k), 0, 1);
+}
+
+color _patina_rgb_of_hue(float hue, top, chroma)
+{
+    float h6 = hue * 6;
+    return color(_patina_hue_channel(h6, 5, top, chroma), _patina_hue_channel(h6, 3, top, chroma),
+                 _patina_hue_channel(h6, 1, top, chroma));
+}
+
+color _patina_hsv_to_rgb(color c)
+{
+    return _patina_rgb_of_hue(c[0], c[2], c[2] * c[1]);
+}
+
+// Chroma (1 - |2L - 1|) S; the largest channel is L + chroma / 2.
+color _patina_hsl_to_rgb(color c)
+{
+    float l = c[2];
+    float chroma = (1 - abs(2 * l - 1)) * c[1];
+    return _patina_rgb_of_hue(c[0], l + chroma * 0.5, chroma);
+}
+
+color _patina_rgb_to_hsv(color c)
+{
+    float hue, top, bottom, chroma;
+    _patina_hue_of(c, hue, top, bottom, chroma);
+    return color(hue, top != 0 ? chroma / top : 0, top);
+}
+
+// S = chroma / (1 - |2L - 1|), 0 where the denominator vanishes (black, white).
+color _patina_rgb_to_hsl(color c)
+{
+    float hue, top, bottom, chroma;
+    _patina_hue_of(c, hue, top, bottom, chroma);
+    float sum = top + bottom;
+    float spread = 1 - abs(sum - 1);
+    return color(hue, spread != 0 ? chroma / spread : 0, sum * 0.5);
+}
+
+// (x, y, Y) to (X, Y, Z): X = x Y / y, Z = (1 - x - y) Y / y; 0 where y is 0.
+color _patina_xyy_to_rgb(color c)
+{
+    float x = c[0], y = c[1], lum = c[2];
+    float scale = lum / y;
+    float big_x = x * scale, big_z = (1 - x - y) * scale;
+    return _patina_xyz_to_rgb(color(y != 0 ? big_x : 0, lum, y != 0 ? big_z : 0));
+}
+
+// x = X / (X + Y + Z), y = Y / (X + Y + Z); black has no chromaticity and gets the white point's
+// (D65), so that converting it back gives black again.
+color _patina_rgb_to_xyy(color c)
+{
+    color xyz = _patina_rgb_to_xyz(c);
+    float sum = xyz[0] + xyz[1] + xyz[2];
+    float x = xyz[0] / sum, y = xyz[1] / sum;
+    return color(sum != 0 ? x : 0.3127, sum != 0 ? y : 0.3290, xyz[1]);
+}
+
+color _patina_to_rgb(string space; color c)
+{
+    color rgb = c;
+    if (space == "hsv")
+        rgb = _patina_hsv_to_rgb(c);
+    else if (space == "hsl")
+        rgb = _patina_hsl_to_rgb(c);
+    else if (space == "xyz" || space == "XYZ")
+        rgb = _patina_xyz_to_rgb(c);
+    else if (space == "xyY")
+        rgb = _patina_xyy_to_rgb(c);
+    else if (space == "YIQ")
+        rgb = _patina_yiq_to_rgb(c);
+    return rgb;
+}
+
+color _patina_from_rgb(string space; color rgb)
+{
+    color c = rgb;
+    if (space == "hsv")
+        c = _patina_rgb_to_hsv(rgb);
+    else if (space == "hsl")
+        c = _patina_rgb_to_hsl(rgb);
+    else if (space == "xyz" || space == "XYZ")
+        c = _patina_rgb_to_xyz(rgb);
+    else if (space == "xyY")
+        c = _patina_rgb_to_xyy(rgb);
+    else if (space == "YIQ")
+        c = _patina_rgb_to_yiq(rgb);
+    return c;
+}
+
+// From `from` through RGB to `to`; within one space (xyz and XYZ are one) no conversion, which
+// would only add rounding.
+color __ctransform_color(string from, to; color c)
+{
+    __colour_space(from);
+    __colour_space(to);
+    color result;
+    if (from == to || (from == "xyz" && to == "XYZ") || (from == "XYZ" && to == "xyz"))
+        result = c;
+    else
+        result = _patina_from_rgb(to, _patina_to_rgb(from, c));
+    return result;
+}
+
+color __ctransform_color(string to; color c)
+{
+    return __ctransform_color("rgb", to, c);
+}

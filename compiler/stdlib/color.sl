@@ -25,9 +25,9 @@
 // another size. mipcolortable takes an open-length array (`color mip[]`) and the table's length.
 //
 // Colour spaces and colour splines are built in: ctransform and the colour casts
-// (`color "hsv" (h, s, v)`) convert between rgb, hsv, hsl, xyz/XYZ, xyY and YIQ, and spline takes
-// colour knots, listed or in an array (docs/builtins.md); docs/stdlib/color.md documents and tests
-// them. Nothing of them is rewritten here.
+// (`color "hsv" (h, s, v)`) convert between rgb, hsv, hsl, xyz/XYZ, xyY and YIQ (written in
+// compiler/stdlib/builtins.sl), and spline takes colour knots, listed or in an array
+// (docs/builtins.md); docs/stdlib/color.md documents and tests them. Nothing of them is here.
 
 #ifndef PATINA_COLOR_SL
 #define PATINA_COLOR_SL

@@ -5,10 +5,10 @@
 //! products, `smoothstep`, `inversesqrt`) the sequence is written out, so that both backends give
 //! the same bits. Transcendentals (`sin`, `exp`, `pow`, ...) are WGSL's, within its accuracy
 //! rules. The composite families live beside this file: `geometry` (spaces, `transform`,
-//! `fresnel`), `matrices`, `colour`, `curves` (`spline`) and `strings` (`concat`, `match`).
+//! `fresnel`), `matrices`, `curves` (`spline`) and `strings` (`concat`, `match`); colour spaces
+//! are the library's (`compiler/stdlib/builtins.sl`).
 
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
-use smol_str::SmolStr;
 
 use super::body::{Translator, Value};
 use crate::diag::{Code, Diagnostic};
@@ -274,22 +274,17 @@ impl Translator<'_> {
             "rotate" => self.rotate_point(v(0), v(1), v(2), v(3)),
             "ptlined" => self.ptlined(v(0), v(1), v(2)),
             "depth" => self.depth(v(0)),
-            "ctransform" => {
-                let names: Vec<Option<SmolStr>> =
-                    args[..args.len() - 1].iter().map(|a| self.fold_string(*a)).collect();
-                let (from, to) = match names.as_slice() {
-                    [Some(from), Some(to)] => (from.clone(), to.clone()),
-                    [Some(to)] => (SmolStr::new("rgb"), to.clone()),
-                    _ => {
-                        return Err(Diagnostic::error(
-                            Code::NotExecutable,
-                            "colour space names must be known when the shader is compiled",
-                            span,
-                            "this call",
-                        ));
-                    }
+            "__colour_space" => {
+                let Some(name) = self.fold_string(args[0]) else {
+                    return Err(Diagnostic::error(
+                        Code::NotExecutable,
+                        "colour space names must be known when the shader is compiled",
+                        span,
+                        "this call",
+                    ));
                 };
-                self.ctransform(&from, &to, v(vals.len() - 1), span)?
+                crate::stdlib::check_colour_space(&name, span)?;
+                void(self)
             }
             "spline" => self.spline(args, &vals, ret, span)?,
             "match" => self.pattern_match(args, span)?,

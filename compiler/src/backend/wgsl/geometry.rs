@@ -42,29 +42,21 @@ impl Translator<'_> {
         (self.entries(to, 4), self.entries(from, 4))
     }
 
-    /// `v` (of type `ty`) given in `space`, converted to "current".
-    pub(super) fn space_to_current(
-        &mut self,
-        space: &str,
-        v: Value,
-        ty: Type,
-        span: Span,
-    ) -> Result<Value, Diagnostic> {
-        if ty.base == Base::Color {
-            return self.colour_to_rgb(space, v, span);
-        }
+    /// `v` (of type `ty`) given in `space`, converted to "current" (colours never come here:
+    /// their spaces are converted by library code).
+    pub(super) fn space_to_current(&mut self, space: &str, v: Value, ty: Type) -> Value {
         if self.fast() && ty.base != Base::Matrix4 {
-            return Ok(self.by_space(v, Rule::of(ty.base), space, false));
+            return self.by_space(v, Rule::of(ty.base), space, false);
         }
         let (to_m, from_m) = self.space_entries(space);
         if ty.base == Base::Matrix4 {
             let value = self.entries(v, 4);
             let product = self.product(&value, &from_m, 4);
-            return Ok(self.matrix(&product, 4));
+            return self.matrix(&product, 4);
         }
         let value = self.parts(v, 3);
         let out = self.apply(&value, Rule::of(ty.base), &from_m, &to_m);
-        Ok(self.vector(&out))
+        self.vector(&out)
     }
 
     /// `transform`, `vtransform` and `ntransform` in their four forms: to a space, from one space

@@ -217,9 +217,7 @@ impl Analysis<'_> {
                         ExprKind::Unary(_, a) | ExprKind::Convert(a) | ExprKind::Index(a, _) => on(a),
                         ExprKind::Binary(_, a, b) | ExprKind::Select(_, a, b) => on(a) || on(b),
                         ExprKind::Construct(parts) => parts.iter().any(on),
-                        ExprKind::FromSpace { space, value } => {
-                            !calls::nonlinear_space(space, e.ty) && on(value)
-                        }
+                        ExprKind::FromSpace { value, .. } => on(value),
                         ExprKind::Builtin(b, args) => {
                             !is_consumer(b)
                                 && (calls::is_source(b) || calls::operands(b, args).iter().any(on))
@@ -257,11 +255,7 @@ impl Analysis<'_> {
             ExprKind::Unary(_, a) | ExprKind::Convert(a) | ExprKind::Index(a, _) => self.work.push(*a),
             ExprKind::Binary(_, a, b) | ExprKind::Select(_, a, b) => self.work.extend([*a, *b]),
             ExprKind::Construct(parts) => self.work.extend(parts),
-            ExprKind::FromSpace { space, value } => {
-                if !calls::nonlinear_space(space, expr.ty) {
-                    self.work.push(*value);
-                }
-            }
+            ExprKind::FromSpace { value, .. } => self.work.push(*value),
             ExprKind::Builtin(b, args) => {
                 if !is_consumer(b) {
                     self.work.extend(calls::operands(b, args));

@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use super::analysis::dtype;
 use super::rules::Diff;
 use crate::ir::types::{Base, Type};
-use crate::ir::{Axis, BinaryOp, ExprId, ExprKind, Literal};
+use crate::ir::{Axis, BinaryOp, ExprId};
 use crate::sema::builtins::Builtin;
 
 /// The arguments whose derivatives the rule of `b` uses (none for the built-ins whose derivative
@@ -22,7 +22,7 @@ pub(super) fn operands(b: &Builtin, args: &[ExprId]) -> Vec<ExprId> {
         | "translate" | "scale" => args.to_vec(),
         "rotate" if b.ret.base == Base::Point => args.to_vec(),
         "xcomp" | "ycomp" | "zcomp" | "comp" | "faceforward" | "rotate" => vec![args[0]],
-        "transform" | "vtransform" | "ntransform" | "ctransform" => {
+        "transform" | "vtransform" | "ntransform" => {
             vec![*args.last().expect("an argument")]
         }
         "select" => args[1..].to_vec(),
@@ -46,12 +46,6 @@ pub(super) fn output_inputs(b: &Builtin, args: &[ExprId]) -> Vec<ExprId> {
 /// Whether `b` writes one component of its output argument with its last argument.
 pub(super) fn is_component_setter(b: &Builtin) -> bool {
     matches!(b.name, "setxcomp" | "setycomp" | "setzcomp" | "setcomp")
-}
-
-/// Whether a value of type `ty` given in `space` is converted nonlinearly (the colour spaces hsv,
-/// hsl, xyY): its derivative is taken as 0.
-pub(super) fn nonlinear_space(space: &str, ty: Type) -> bool {
-    ty.base == Base::Color && !matches!(space, "rgb" | "xyz" | "XYZ" | "YIQ")
 }
 
 /// Where the knots of a `spline` overload start: after the optional basis name and the parameter.
@@ -226,18 +220,6 @@ impl Diff<'_> {
             ("xcomp" | "ycomp" | "zcomp" | "rgb" | "transpose" | "affine" | "integrate", _) => {
                 let dx = self.d(a[0], axis)?;
                 Some(self.b.call(b.name, vec![dx]))
-            }
-            ("ctransform", _) => {
-                // Linear between the linear colour spaces (named by literals); 0 otherwise.
-                let (last, leading) = a.split_last().expect("an argument");
-                let linear = leading.iter().all(|&n| match &self.b.shader.expr(n).kind {
-                    ExprKind::Literal(Literal::String(space)) => !nonlinear_space(space, ty),
-                    _ => false,
-                });
-                let dc = self.d(*last, axis).filter(|_| linear)?;
-                let mut args = leading.to_vec();
-                args.push(dc);
-                Some(self.b.call("ctransform", args))
             }
             ("comp", _) => {
                 let dx = self.d(a[0], axis)?;

@@ -108,15 +108,10 @@ impl<'s> Diff<'s> {
                     Some(self.b.construct(parts, dty))
                 }
             }
+            // Colours never come here: their spaces are converted by library code.
             ExprKind::FromSpace { space, value } => {
-                if super::calls::nonlinear_space(&space, ty) {
-                    None
-                } else if ty.base == Base::Color && space == "rgb" {
-                    self.d(value, axis)
-                } else {
-                    let dv = self.d(value, axis)?;
-                    Some(self.b.from_space(space, dv))
-                }
+                let dv = self.d(value, axis)?;
+                Some(self.b.from_space(space, dv))
             }
             ExprKind::Index(base, index) => self.d(base, axis).map(|db| self.b.index_by(db, index)),
             ExprKind::Select(c, a, b) => {

@@ -163,6 +163,9 @@ pub const SIGNATURES: &[&str] = &[
     "void setcomp(output color, float, float)",
     "color ctransform(string, color)",
     "color ctransform(string, string, color)",
+    // Internal: `ctransform`'s implementation (`compiler/stdlib/builtins.sl`) checks a space name
+    // that is not a literal (a string parameter's value, known to the backends) with this.
+    "void __colour_space(string)",
     // ---------------------------------------------------------------------------------------------
     // RenderMan 15.4: matrix functions (row, column).
     // ---------------------------------------------------------------------------------------------

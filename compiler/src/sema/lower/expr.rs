@@ -12,7 +12,7 @@ use crate::syntax::ast;
 pub const SPACES: &[&str] =
     &["current", "object", "shader", "world", "camera", "screen", "raster", "NDC", "eye"];
 /// The colour spaces colours can be given in.
-pub const COLOR_SPACES: &[&str] = &["rgb", "hsv", "hsl", "xyz", "XYZ", "xyY", "YIQ"];
+pub const COLOR_SPACES: &[&str] = crate::stdlib::COLOUR_SPACES;
 
 /// Edit distance counting a swap of neighbours as one edit (optimal string alignment), for "did
 /// you mean" suggestions.
@@ -193,6 +193,10 @@ impl Lowerer<'_> {
     fn name(&mut self, name: &ast::Ident) -> Option<ExprId> {
         if let Some(id) = self.lookup_local(&name.name) {
             let ty = self.locals[id.0 as usize].ty;
+            if let Some(&arg) = self.string_aliases.get(&id) {
+                let kind = self.expr_ref(arg).kind.clone();
+                return Some(self.push_expr(kind, ty, name.span));
+            }
             return Some(self.push_expr(ExprKind::Local(id), ty, name.span));
         }
         let global = self.global(name)?;
@@ -712,7 +716,17 @@ impl Lowerer<'_> {
         if !self.known_space(name, *space_span, to.base == Base::Color) {
             return None;
         }
-        Some(self.push_expr(ExprKind::FromSpace { space: name.into(), value }, to, span))
+        let from_space = ExprKind::FromSpace { space: name.into(), value };
+        if to.base == Base::Color {
+            // Colour spaces are converted by the library (`compiler/stdlib/builtins.sl`).
+            if name == "rgb" {
+                return Some(value);
+            }
+            let space =
+                self.push_expr(ExprKind::Literal(Literal::String(name.into())), Type::STRING, *space_span);
+            return self.library_call("_patina_to_rgb", vec![space, value], from_space, to, span, out);
+        }
+        Some(self.push_expr(from_space, to, span))
     }
 
     /// Checks a space name, reporting an unknown one with the list and a likely correction.

@@ -113,6 +113,11 @@ pub(super) struct Lowerer<'a> {
     /// Whether the expression being lowered is stored in a variable declared uniform: `random()`
     /// there is one value per draw (`__uniform_random`), as in RSL.
     uniform_random: bool,
+    /// The string parameters of library functions that read their argument itself (a literal or
+    /// a variable) rather than a copy: the backends know a string only through literals and
+    /// shader parameters, so a space name passed to a library built-in must stay one of those
+    /// (and a literal one decides the library's `if`s here).
+    string_aliases: FxHashMap<LocalId, ExprId>,
 }
 
 /// Lowers one shader, and says whether it had errors (they have been reported): the parts with
@@ -244,6 +249,7 @@ impl<'a> Lowerer<'a> {
             nesting: 0,
             nesting_reported: false,
             uniform_random: false,
+            string_aliases: FxHashMap::default(),
         }
     }
 }
@@ -252,6 +258,35 @@ impl Lowerer<'_> {
     /// Whether the code being lowered is a library built-in's (`compiler/stdlib/builtins.sl`).
     fn in_library(&self) -> bool {
         self.frames.last().is_some_and(|f| f.library)
+    }
+
+    /// The value of a condition made of comparisons of literal strings (with `&&`, `||` and `!`),
+    /// if it is one: a space name given as a literal to a library built-in.
+    fn decided(&self, id: ExprId) -> Option<bool> {
+        use crate::ir::{BinaryOp, UnaryOp};
+        match &self.expr_ref(id).kind {
+            ExprKind::Literal(Literal::Bool(b)) => Some(*b),
+            ExprKind::Binary(op @ (BinaryOp::Eq | BinaryOp::Ne), a, b) => {
+                match (&self.expr_ref(*a).kind, &self.expr_ref(*b).kind) {
+                    (ExprKind::Literal(Literal::String(x)), ExprKind::Literal(Literal::String(y))) => {
+                        Some((x == y) == (*op == BinaryOp::Eq))
+                    }
+                    _ => None,
+                }
+            }
+            ExprKind::Binary(BinaryOp::And, a, b) => match (self.decided(*a), self.decided(*b)) {
+                (Some(false), _) | (_, Some(false)) => Some(false),
+                (Some(true), Some(true)) => Some(true),
+                _ => None,
+            },
+            ExprKind::Binary(BinaryOp::Or, a, b) => match (self.decided(*a), self.decided(*b)) {
+                (Some(true), _) | (_, Some(true)) => Some(true),
+                (Some(false), Some(false)) => Some(false),
+                _ => None,
+            },
+            ExprKind::Unary(UnaryOp::Not, a) => self.decided(*a).map(|b| !b),
+            _ => None,
+        }
     }
 
     /// Reports a diagnostic once (an inlined function's body is lowered at every call).

@@ -5,7 +5,7 @@ use rustc_hash::FxHashMap;
 use super::{Frame, LightLoop, Lowerer};
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Rate, Type};
-use crate::ir::{Block, ExprId, LocalId, LocalKind, Place, Stmt};
+use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Stmt};
 use crate::syntax::ast::{self, StmtKind};
 
 /// The type a declaration gives: its base type, made an array by the declarator's size.
@@ -151,6 +151,18 @@ impl Lowerer<'_> {
             StmtKind::Gather { .. } => self.error(crate::sema::unsupported::gather(s.span)),
             StmtKind::If { cond, then, otherwise } => {
                 let cond = self.expr(cond, Some(Type::BOOL), out).and_then(|c| self.condition(c));
+                // In library code a condition on literal strings (a space name) is decided here:
+                // only the side it takes is lowered, so nothing of the others reaches a backend.
+                if self.in_library()
+                    && let Some(taken) = cond.and_then(|c| self.decided(c))
+                {
+                    let side = if taken { Some(&**then) } else { otherwise.as_deref() };
+                    if let Some(side) = side {
+                        let block = self.sub_block(side);
+                        out.extend(block);
+                    }
+                    return;
+                }
                 let then = self.sub_block(then);
                 // An `else if` chain is as deep as it is long; its length has its own limit.
                 let otherwise = match otherwise.as_deref() {
@@ -485,6 +497,18 @@ impl Lowerer<'_> {
             self.locals[id.0 as usize].function = Some(f.name.name.clone());
             if let Some(arg) = arg {
                 let arg_span = self.span_of(*arg);
+                // A library function's string parameter is its argument (see `string_aliases`):
+                // library code never stores into one.
+                if library
+                    && ty == Type::STRING
+                    && self.ty(*arg) == Type::STRING
+                    && p.qualifiers.output.is_none()
+                    && matches!(self.expr_ref(*arg).kind, ExprKind::Literal(_) | ExprKind::Local(_))
+                {
+                    self.string_aliases.insert(id, *arg);
+                    self.bind(&p.name, id);
+                    continue;
+                }
                 if let Some(value) = self.coerce(*arg, ty, "the parameter") {
                     self.store(Place::Local(id), value, arg_span, &mut body);
                 }

@@ -12,8 +12,9 @@
 //! the shading-language functions are specified as postconcatenating, and Aqsis's `mtranslate`
 //! computes `m * T` in the same convention.)
 //!
-//! This module also dispatches the built-ins of `colour` (`ctransform`), `curves` (`spline`) and
-//! `pattern` (`match`), and holds `fresnel`, `ptlined`, the point `rotate` and `depth`.
+//! This module also dispatches the built-ins of `curves` (`spline`) and `pattern` (`match`), checks
+//! the colour space names `ctransform` reads from the binding (its conversions are the library's,
+//! `compiler/stdlib/builtins.sl`), and holds `fresnel`, `ptlined`, the point `rotate` and `depth`.
 
 use super::{Lower, Val};
 use crate::backend::CLIP_INPUT;
@@ -166,32 +167,10 @@ impl Lower<'_> {
                 self.fresnel(vals, args, span)?;
                 Val::Void
             }
-            "ctransform" => {
-                let names: Vec<&str> = vals[..vals.len() - 1]
-                    .iter()
-                    .map(|v| match v {
-                        Val::Str(s) => s.as_str(),
-                        _ => "",
-                    })
-                    .collect();
-                let (from, to) = match names[..] {
-                    [from, to] => (from, to),
-                    [to] => ("rgb", to),
-                    _ => return Ok(None),
-                };
-                for name in [from, to] {
-                    if !super::colour::known_colour_space(name) {
-                        return Err(Diagnostic::error(
-                            DiagCode::UnknownSpace,
-                            format!("unknown colour space \"{name}\""),
-                            span,
-                            "in this conversion",
-                        )
-                        .with_note("the colour spaces are rgb, hsv, hsl, xyz, XYZ, xyY, YIQ"));
-                    }
-                }
-                let c = vals[vals.len() - 1].floats().to_vec();
-                Val::Float(self.ctransform(from, to, &c))
+            "__colour_space" => {
+                let Val::Str(name) = &vals[0] else { return Ok(None) };
+                crate::stdlib::check_colour_space(name, span)?;
+                Val::Void
             }
             "spline" => self.spline(vals, ret.base.components(), span)?,
             "match" => {
@@ -338,9 +317,6 @@ impl Lower<'_> {
     /// `value` given in `space`, converted to "current".
     pub(super) fn space_to_current(&mut self, space: &str, v: &Val, ty: Type) -> Val {
         let value = v.floats().to_vec();
-        if ty.base == Base::Color {
-            return Val::Float(self.colour_to_rgb(space, &value));
-        }
         let (to_m, from_m) = self.space_matrices(space);
         if ty.base == Base::Matrix4 {
             return Val::Float(self.product(&value, &from_m, 4));

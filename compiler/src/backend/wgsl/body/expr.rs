@@ -85,7 +85,7 @@ impl Translator<'_> {
             ExprKind::FromSpace { space, value } => {
                 let v = self.expr(*value)?;
                 let from = self.shader.expr(*value).ty;
-                self.space_to_current(space, v, from, span)?
+                self.space_to_current(space, v, from)
             }
             ExprKind::Index(base, index) if let Some(member) = self.uniform_table(*base) => {
                 // Element `i` of a table in the uniform block: `u.table[i].x` (its elements are

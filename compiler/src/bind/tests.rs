@@ -290,6 +290,7 @@ fn a_literal_argument_decides_the_branches_it_reaches_without_a_report() {
     let bound = specialize_all(&original, &[]);
     assert_eq!(calls(&bound.shader), ["exp"]);
     assert!(bound.decisions.iter().all(|d| !matches!(d, Decision::Branch { .. })), "{:?}", bound.decisions);
+}
 
 #[test]
 fn a_fixed_matrix_becomes_a_matrix_of_float_literals() {

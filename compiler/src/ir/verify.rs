@@ -18,7 +18,7 @@ use super::types::{Base, Frequency, Rate, Type};
 use super::{
     BinaryOp, Block, ExprId, ExprKind, Input, Literal, LocalId, LocalKind, Place, Shader, Stmt, UnaryOp,
 };
-use crate::sema::builtins::{self, Builtin, Context, RateRule};
+use crate::sema::builtins::{self, Builtin, Context};
 use crate::sema::convert;
 use crate::sema::globals::{self, Access, Global, Scope};
 use crate::split::{StageKind, Stages};
@@ -558,46 +558,13 @@ impl Verifier<'_> {
         self.shader.expr(e).rate
     }
 
-    /// The rate `sema::rates` gives an expression of this kind, from its operands' rates.
-    fn expected_rate(&self, kind: &ExprKind) -> Rate {
-        let join = |ids: &[ExprId]| ids.iter().fold(Rate::CONSTANT, |r, &id| r.join(self.rate(id)));
-        match kind {
-            ExprKind::Literal(_) => Rate::CONSTANT,
-            ExprKind::Seed(..) => Rate::FRAGMENT,
-            ExprKind::Local(l) => self.shader.local(*l).rate,
-            ExprKind::Global(g) => Rate { frequency: g.frequency, perlight: g.perlight },
-            ExprKind::Unary(_, a) | ExprKind::Convert(a) => self.rate(*a),
-            ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => join(&[*a, *b]),
-            ExprKind::Select(c, a, b) => join(&[*c, *a, *b]),
-            ExprKind::Construct(parts) => join(parts),
-            // Leaving "current" needs the space's matrix, known per draw.
-            ExprKind::FromSpace { space, value } if space != "current" => {
-                self.rate(*value).join(Rate::UNIFORM)
-            }
-            ExprKind::FromSpace { value, .. } => self.rate(*value),
-            ExprKind::Builtin(b, args) => {
-                let rate = join(args);
-                match b.rate {
-                    RateRule::Max => rate,
-                    RateRule::Derivative if rate.frequency >= Frequency::Vertex => {
-                        Rate { frequency: Frequency::Fragment, ..rate }
-                    }
-                    RateRule::Derivative => rate,
-                    RateRule::Fragment | RateRule::Lights => rate.join(Rate::FRAGMENT),
-                    RateRule::Uniform => rate.join(Rate::UNIFORM),
-                    RateRule::Integrate => Rate { perlight: false, ..rate },
-                }
-            }
-        }
-    }
-
     fn expr(&mut self, id: ExprId) {
         let e = self.shader.expr(id);
         if let Err(why) = self.expr_type(&e.kind, e.ty) {
             self.fail(format!("e{} {}: {why}", id.0, describe(&e.kind)));
         }
         if self.pass.rated() {
-            let expected = self.expected_rate(&e.kind);
+            let expected = crate::ir::build::rate_of(self.shader, &e.kind);
             let ok = if self.pass == Pass::Rates { e.rate == expected } else { expected.fits_in(e.rate) };
             if !ok {
                 let relation = if self.pass == Pass::Rates { "exactly" } else { "at least" };

@@ -156,6 +156,19 @@ impl Type {
         self.array.is_some()
     }
 
+    /// The type of this type's derivative (`opt::derivs`): a point's is a vector, a `clampf`'s a
+    /// `float`; `None` when values of the type have no derivative (integers, bools, strings).
+    pub fn derivative(self) -> Option<Type> {
+        let base = match self.base {
+            Base::Float | Base::Clampf => Base::Float,
+            Base::Point => Base::Vector,
+            b @ (Base::Color | Base::Vector | Base::Normal | Base::Float3 | Base::Float4) => b,
+            b @ (Base::Matrix3 | Base::Matrix4) => b,
+            Base::Void | Base::Bool | Base::Int | Base::Uint | Base::String | Base::Texref => return None,
+        };
+        Some(Type { base, array: self.array })
+    }
+
     /// The type of an element of this type (what indexing it gives): an array's base type, a
     /// matrix's row, a string's character (a string), or a vector's component.
     pub fn element(self) -> Type {

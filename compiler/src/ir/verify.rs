@@ -284,18 +284,6 @@ fn element(ty: Type) -> Option<Type> {
     }
 }
 
-/// The type of an input's derivative (`opt::derivs`): a point's is a vector, a `clampf`'s a float.
-fn derivative_type(ty: Type) -> Option<Type> {
-    let base = match ty.base {
-        Base::Float | Base::Clampf => Base::Float,
-        Base::Point => Base::Vector,
-        b @ (Base::Color | Base::Vector | Base::Normal | Base::Float3 | Base::Float4) => b,
-        b @ (Base::Matrix3 | Base::Matrix4) => b,
-        Base::Void | Base::Bool | Base::Int | Base::Uint | Base::String | Base::Texref => return None,
-    };
-    Some(Type { base, array: ty.array })
-}
-
 /// Whether a call is one `opt::derivs` replaces (its `is_consumer`).
 fn is_derivative(b: &Builtin) -> bool {
     match b.name {
@@ -697,7 +685,7 @@ impl Verifier<'_> {
                         s.local(*l).ty
                     }
                 };
-                match derivative_type(of) {
+                match of.derivative() {
                     Some(d) => want(ty, d, "the derivative")?,
                     None => return Err(format!("`{of}` has no derivative")),
                 }

@@ -12,7 +12,7 @@
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::calls;
-use crate::ir::types::{Base, Frequency, Rate, Type};
+use crate::ir::types::{Frequency, Rate, Type};
 use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
 use crate::sema::builtins::Builtin;
 use crate::sema::globals::{self, Global};
@@ -30,17 +30,9 @@ pub(super) struct Needs {
     pub active: Vec<bool>,
 }
 
-/// The type of the derivative of a value of type `ty`: a point's is a vector, a `clampf`'s a
-/// `float`; `None` when values of the type have no derivative (integers, bools, strings).
+/// The type of an input's derivative: [`Type::derivative`].
 pub(super) fn dtype(ty: Type) -> Option<Type> {
-    let base = match ty.base {
-        Base::Float | Base::Clampf => Base::Float,
-        Base::Point => Base::Vector,
-        b @ (Base::Color | Base::Vector | Base::Normal | Base::Float3 | Base::Float4) => b,
-        b @ (Base::Matrix3 | Base::Matrix4) => b,
-        Base::Void | Base::Bool | Base::Int | Base::Uint | Base::String | Base::Texref => return None,
-    };
-    Some(Type { base, array: ty.array })
+    ty.derivative()
 }
 
 /// Whether a value of type `ty` and rate `rate` can have a non-zero derivative: it must be made of

@@ -1,7 +1,7 @@
 //! The compiler's resource limits (docs/limits.md): each one refused with its diagnostic, at the
-//! construct that crosses it, and quickly; input just under a limit still compiles.
-
-use std::time::{Duration, Instant};
+//! construct that crosses it; input just under a limit still compiles. No test asserts a wall
+//! time (the project keeps timings in benchmarks): input built to take minutes or forever past a
+//! limit shows the limit holds by finishing at all.
 
 use patina_compiler::backend::MAX_LOOP_ITERATIONS;
 use patina_compiler::backend::defaults::constant_defaults;
@@ -70,7 +70,6 @@ fn statements_nested_through_blocks_stop_at_the_limit() {
     // Four `if`s per block, 250 blocks: 1250 levels, each statement well under the operator
     // limit. This compiled for minutes before the limit.
     let src = nested_statements(4, 250);
-    let start = Instant::now();
     let checked = check(&src);
     let d = only_error(&checked);
     assert_eq!(d.code.as_str(), "E0315");
@@ -78,7 +77,6 @@ fn statements_nested_through_blocks_stop_at_the_limit() {
     // Levels: the shader's `{`, then five per block (four `if`s and a `{`): the 256th level after
     // the shader's brace is the first `if` of block 52 (index 51 of blocks, if 204 overall).
     assert_eq!(at(&checked, d), ("if".to_string(), nth(&src, "if", 204)));
-    assert!(start.elapsed() < Duration::from_secs(5), "took {:?}", start.elapsed());
 }
 
 #[test]
@@ -102,7 +100,6 @@ fn statements_under_the_depth_limit_compile() {
 fn a_root_file_over_the_size_limit_is_refused_before_lexing() {
     let mut src = String::from("surface t() { Ci = 1; }\n");
     src.push_str(&" ".repeat(MAX_FILE_SIZE));
-    let start = Instant::now();
     let checked = check(&src);
     let d = only_error(&checked);
     assert_eq!(d.code.as_str(), "E0220");
@@ -111,7 +108,6 @@ fn a_root_file_over_the_size_limit_is_refused_before_lexing() {
         format!("`shader.sl` is {} bytes, over the limit of 16777216 bytes per source file", src.len())
     );
     assert_eq!(at(&checked, d), (String::new(), 0));
-    assert!(start.elapsed() < Duration::from_secs(5), "took {:?}", start.elapsed());
 }
 
 #[test]
@@ -168,7 +164,6 @@ fn call_chain(n: usize) -> String {
 fn a_long_chain_of_calls_stops_at_the_inlining_depth() {
     // 300 functions: past the refused call, the rest are checked on their own and report nothing.
     let src = call_chain(300);
-    let start = Instant::now();
     let checked = check(&src);
     let d = only_error(&checked);
     assert_eq!(d.code.as_str(), "E0521");
@@ -179,7 +174,6 @@ fn a_long_chain_of_calls_stops_at_the_inlining_depth() {
     assert!(
         d.labels.iter().any(|l| checked.sources.text(l.span) == "f0(s)" && l.message.contains("outermost"))
     );
-    assert!(start.elapsed() < Duration::from_secs(5), "took {:?}", start.elapsed());
     // 64 calls deep is allowed.
     assert!(!check(&call_chain(63)).has_errors());
 }
@@ -193,15 +187,15 @@ fn a_call_tree_of_exponential_size_is_refused_quickly() {
         src.push_str(&format!("float g{i}(float x) {{ return g{j}(x) + g{j}(x * 2); }}\n", j = i + 1));
     }
     src.push_str("surface t() { Ci = g0(s); }\n");
-    let start = Instant::now();
+    // No wall-clock bound (timings belong in benchmarks): the inliner building the tree would
+    // mean 2^30 copies, which never finishes, so finishing with E0521 shows the refusal comes
+    // at the limit, not after the growth.
     let checked = check(&src);
-    let elapsed = start.elapsed();
     let d = only_error(&checked);
     assert_eq!(d.code.as_str(), "E0521");
     assert_eq!(d.message, "with its calls inlined, the shader grows past 500000 expressions");
     let (text, _) = at(&checked, d);
     assert!(text.starts_with('g') && text.contains("(x"), "the span is a call: {text}");
-    assert!(elapsed < Duration::from_secs(20), "took {elapsed:?}");
 }
 
 /// A shader with a loop whose trip count depends on data (`while (x > 0) x += 1` runs forever)
@@ -344,7 +338,6 @@ fn statements_nested_through_inlined_calls_stop_at_the_combined_limit() {
         ));
     }
     src.push_str("surface t() { Ci = f0(s); }\n");
-    let start = Instant::now();
     let checked = check(&src);
     let d = only_error(&checked);
     assert_eq!(d.code.as_str(), "E0521");
@@ -357,5 +350,4 @@ fn statements_nested_through_inlined_calls_stop_at_the_combined_limit() {
     assert!(text.starts_with("if (y > 0)"), "{text}");
     assert_eq!(start_at, f2 + src[f2..].find("if").unwrap() + 110 * "if (y > 0) ".len());
     assert!(d.labels.iter().any(|l| l.message == "in this call of `f2`"));
-    assert!(start.elapsed() < Duration::from_secs(5), "took {:?}", start.elapsed());
 }

@@ -47,7 +47,11 @@ const POINTS: usize = 1_000_000;
 fn program() -> CpuProgram {
     let checked = patina_compiler::check_source("fbm.sl", include_str!("fbm.sl"), &MemoryLoader::default());
     assert!(!checked.has_errors(), "fbm.sl does not check");
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).expect("fbm.sl compiles")
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .expect("fbm.sl compiles")
 }
 
 fn fbm(c: &mut Criterion) {

@@ -9,7 +9,7 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 /// A surface with `chains` chains of `branches` branches each, on a fragment-rate condition.
-fn chains(chains: usize, branches: usize) -> patina_compiler::ir::Shader {
+fn chains(chains: usize, branches: usize) -> patina_compiler::opt::Prepared {
     let mut src = String::from("surface chain() {\n    float v = 0;\n");
     for c in 0..chains {
         // Each chain in a block of its own: a block holds at most 1,024 `else`s.
@@ -22,9 +22,7 @@ fn chains(chains: usize, branches: usize) -> patina_compiler::ir::Shader {
     src.push_str("    Ci = v;\n}\n");
     let checked = patina_compiler::check_source("chain.sl", &src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "the chains check");
-    let mut shader = checked.program.shaders.into_iter().next().expect("one shader");
-    patina_compiler::opt::prepare(&mut shader);
-    shader
+    patina_compiler::opt::Prepared::new(checked.program.shaders.into_iter().next().expect("one shader"))
 }
 
 fn bench(c: &mut Criterion) {

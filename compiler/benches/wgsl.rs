@@ -8,9 +8,10 @@
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use patina_compiler::backend::binding::BoundLight;
 use patina_compiler::backend::defaults::constant_defaults;
-use patina_compiler::backend::wgsl::{self, BoundLight};
-use patina_compiler::ir::Shader;
+use patina_compiler::backend::wgsl;
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::FsLoader;
 
@@ -30,24 +31,16 @@ fn examples() -> Vec<(String, String)> {
     files
 }
 
-fn lights() -> Vec<Shader> {
+fn lights() -> Vec<Prepared> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/shaders/lights.sl");
     let text = std::fs::read_to_string(path).unwrap();
     let checked = patina_compiler::check_source(path, &text, &FsLoader::default());
-    checked
-        .program
-        .shaders
-        .into_iter()
-        .map(|mut s| {
-            patina_compiler::opt::prepare(&mut s);
-            s
-        })
-        .collect()
+    checked.program.shaders.into_iter().map(patina_compiler::opt::Prepared::new).collect()
 }
 
 /// Source text to WGSL text, for every surface shader of a file; `None` when one of them cannot
 /// be compiled for the GPU yet.
-fn compile(name: &str, text: &str, lights: &[Shader]) -> Option<Vec<String>> {
+fn compile(name: &str, text: &str, lights: &[Prepared]) -> Option<Vec<String>> {
     let checked = patina_compiler::check_source(name, text, &FsLoader::default());
     let bound: Vec<BoundLight> = lights
         .iter()
@@ -55,8 +48,7 @@ fn compile(name: &str, text: &str, lights: &[Shader]) -> Option<Vec<String>> {
         .collect();
     let mut out = Vec::new();
     for shader in checked.program.shaders.iter().filter(|s| s.kind == ShaderKind::Surface) {
-        let mut shader = shader.clone();
-        patina_compiler::opt::prepare(&mut shader);
+        let shader = patina_compiler::opt::Prepared::new(shader.clone());
         let stages = patina_compiler::split::split(&shader).ok()?;
         let program = wgsl::compile(&stages, &bound, &[], &constant_defaults).ok()?;
         out.push(program.wgsl().ok()?);

@@ -32,7 +32,11 @@ static GLOBAL: Counting = Counting;
 fn allocations_during_eval(source: &str, inputs: &[(&str, usize)], n: usize) -> usize {
     let checked = patina_compiler::check_source("t.sl", source, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    let program = CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap();
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap();
     let mut eval = Evaluator::<f32>::new(&program);
     let columns: Vec<(patina_compiler::backend::cpu::SlotId, Vec<f32>)> = inputs
         .iter()

@@ -37,8 +37,11 @@ fn program(body: &str) -> CpuProgram {
     );
     let checked = patina_compiler::check_source("t.sl", &source, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{source}\n{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
 }
 
 /// Checks AD against finite differences at every point, for the shader computing `x` by `body`.
@@ -146,7 +149,11 @@ fn derivatives_of_uniform_values_are_exactly_zero() {
 fn area_and_calculatenormal_of_a_plane() {
     let source = "surface t() { Ci = color(area(P), 0, 0); Oi = color(calculatenormal(P)); }";
     let checked = patina_compiler::check_source("t.sl", source, &MemoryLoader::default());
-    let program = CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap();
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap();
     let mut eval = Evaluator::<f64>::new(&program);
     eval.set("dx(P)", &[0.8, -0.2, 0.0]).unwrap();
     eval.set("dy(P)", &[0.3, 1.1, 0.0]).unwrap();

@@ -9,7 +9,7 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 fn compile(source: &str, binding: &Binding) -> CpuProgram {
     let checked = patina_compiler::check_source("test.sl", source, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], binding)
+    CpuProgram::compile(&patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()), binding)
         .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
 }
 
@@ -127,7 +127,11 @@ fn stanford_perlight_values_are_integrated_over_the_lights() {
     let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
     let binding = Binding { lights: vec![LightBinding::default(); 3], strings: vec![] };
-    let program = CpuProgram::compile(&checked.program.shaders[0], &binding).unwrap();
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &binding,
+    )
+    .unwrap();
     let slots: Vec<String> = program.slots().map(|(_, s)| s.name).collect();
     let mut eval = Evaluator::<f64>::new(&program);
     for k in 0..3 {
@@ -302,7 +306,11 @@ fn nested_integrate_sums_over_every_light() {
     let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
     let binding = Binding { lights: vec![LightBinding::default(); 2], strings: vec![] };
-    let program = CpuProgram::compile(&checked.program.shaders[0], &binding).unwrap();
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &binding,
+    )
+    .unwrap();
     let mut eval = Evaluator::<f64>::new(&program);
     for (k, b) in [0.25, 0.5].iter().enumerate() {
         eval.set(&format!("Cl[{k}]"), &[*b, 0.0, 0.0, 1.0]).unwrap();

@@ -12,7 +12,7 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 fn try_compile(source: &str, binding: &Binding) -> Result<CpuProgram, patina_compiler::diag::Diagnostic> {
     let checked = patina_compiler::check_source("test.sl", source, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], binding)
+    CpuProgram::compile(&patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()), binding)
 }
 
 /// Compiles the only shader of `source`, panicking with the diagnostic on failure.

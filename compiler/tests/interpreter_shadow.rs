@@ -12,7 +12,11 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 fn program(src: &str) -> CpuProgram {
     let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap()
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap()
 }
 
 const N: u32 = 8;

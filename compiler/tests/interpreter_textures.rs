@@ -10,7 +10,8 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 fn program(src: &str, binding: &Binding) -> CpuProgram {
     let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], binding).unwrap()
+    CpuProgram::compile(&patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()), binding)
+        .unwrap()
 }
 
 /// A 2x2 texture: red, green on the top row; blue, white below.

@@ -4,8 +4,9 @@
 //! limit shows the limit holds by finishing at all.
 
 use patina_compiler::backend::MAX_LOOP_ITERATIONS;
+use patina_compiler::backend::binding::BoundLight;
 use patina_compiler::backend::defaults::constant_defaults;
-use patina_compiler::backend::wgsl::{self, BoundLight, MAX_LIGHTS, compile_kernel};
+use patina_compiler::backend::wgsl::{self, MAX_LIGHTS, compile_kernel};
 use patina_compiler::diag::Diagnostic;
 use patina_compiler::syntax::preprocess::{MAX_FILE_SIZE, MAX_TOTAL_SOURCE, MemoryLoader};
 use patina_compiler::{Checked, check_source};
@@ -261,8 +262,7 @@ fn loops(module: &naga::Module) -> Vec<bool> {
 fn gpu_loops_with_data_dependent_trip_counts_are_capped_and_counting_loops_are_not() {
     let checked = check(UNBOUNDED_LOOP);
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    let mut shader = checked.program.shaders[0].clone();
-    patina_compiler::opt::derivs::differentiate(&mut shader);
+    let shader = patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone());
     let kernel = compile_kernel(&shader, &[], &[], &["start"], &["Ci"]).expect("compiles");
     // The `while` first, then the `for`.
     assert_eq!(loops(&kernel.module), [true, false]);
@@ -285,8 +285,7 @@ fn a_counter_stored_in_the_body_or_reused_keeps_the_cap() {
     for (src, capped) in [(inside, [true]), (stuck, [true]), (down, [false])] {
         let checked = check(src);
         assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-        let mut shader = checked.program.shaders[0].clone();
-        patina_compiler::opt::derivs::differentiate(&mut shader);
+        let shader = patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone());
         let kernel = compile_kernel(&shader, &[], &[], &[], &["Ci"]).expect("compiles");
         assert_eq!(loops(&kernel.module), capped, "{src}");
     }
@@ -296,11 +295,9 @@ fn a_counter_stored_in_the_body_or_reused_keeps_the_cap() {
 fn more_lights_than_the_limit_are_refused_and_the_limit_itself_compiles() {
     let surface = check("surface lit() {\n    illuminance(P) { Ci += Cl; }\n}\n");
     let light = check("light one() {\n    illuminate(point(0, 1, 0)) { Cl = 1; }\n}\n");
-    let mut shader = surface.program.shaders[0].clone();
-    patina_compiler::opt::prepare(&mut shader);
+    let shader = patina_compiler::opt::Prepared::new(surface.program.shaders[0].clone());
     let stages = patina_compiler::split::split(&shader).expect("splits");
-    let mut one = light.program.shaders[0].clone();
-    patina_compiler::opt::prepare(&mut one);
+    let one = patina_compiler::opt::Prepared::new(light.program.shaders[0].clone());
     let bound = |n: usize| -> Vec<BoundLight> {
         (0..n).map(|_| BoundLight { shader: &one, strings: vec![], categories: vec![] }).collect()
     };

@@ -40,7 +40,11 @@ fn program(expr: &str, ty: &str) -> CpuProgram {
     );
     let checked = patina_compiler::check_source("t.sl", &source, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{expr}: {:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap()
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap()
 }
 
 /// `r` at every combination of grid values for `a`, `b`, `c` (as many as `arity`), in f32.
@@ -297,7 +301,11 @@ fn uniform_and_varying_operands_agree() {
                             uniform float ub = 0; output varying float r = 0)
                   { r = mix(a, ub, b) + mix(ua, b, ub) + mix(ua, ub, a) + (a - ub) * (ua - b); }";
     let checked = patina_compiler::check_source("t.sl", source, &MemoryLoader::default());
-    let program = CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap();
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap();
     let mut eval = Evaluator::<f32>::new(&program);
     let (ua, ub) = (0.75f32, -1.25f32);
     eval.set("ua", &[f64::from(ua)]).unwrap();
@@ -323,7 +331,11 @@ fn runtime_errors_are_defined() {
         r = table[0] + table[1] * 100 + table[2] * 10000;
     }";
     let checked = patina_compiler::check_source("t.sl", source, &MemoryLoader::default());
-    let program = CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap();
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap();
     let mut eval = Evaluator::<f64>::new(&program);
     let out = eval.eval_points(4, &[("a", &[-5.0, 1.0, 2.0, 99.0])], &["r"]).unwrap();
     assert_eq!(
@@ -338,7 +350,11 @@ fn runtime_errors_are_defined() {
 
     let source = "surface t(varying float a = 0) { float x = 0; while (x < 10) { x += a; } Ci = x; }";
     let checked = patina_compiler::check_source("t.sl", source, &MemoryLoader::default());
-    let program = CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap();
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap();
     let mut eval = Evaluator::<f32>::new(&program);
     eval.set_budget(1000);
     // One point makes progress, one never does.

@@ -1148,8 +1148,11 @@ fn a_declared_variable_living_inside_a_varying_branch_answers_only_to_conditions
         ]);
         let sh = shader(&src);
         assert_eq!(rate_of(&sh, "k").frequency, frequency, "{rate}");
-        let program = patina_compiler::backend::cpu::CpuProgram::compile(&sh, &Default::default())
-            .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
+        let program = patina_compiler::backend::cpu::CpuProgram::compile(
+            &patina_compiler::opt::Prepared::new(sh.clone()),
+            &Default::default(),
+        )
+        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
         for (s, want) in [(0.25, -1.0), (0.75, 10.0 * 0.75)] {
             let mut eval = patina_compiler::backend::cpu::Evaluator::<f64>::new(&program);
             let out = eval.eval_points(1, &[("s", &[s])], &["Ci"]).unwrap();

@@ -190,8 +190,7 @@ fn the_wgsl_backend_compiles_printf_uniform_random_option_and_bake() {
     let checked = check_source("shader.sl", src, &MemoryLoader::default());
     let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
     assert!(!checked.has_errors(), "{}", render_text(&checked.sources, &list));
-    let mut shader = checked.program.shaders[0].clone();
-    patina_compiler::opt::prepare(&mut shader);
+    let shader = patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone());
     let stages = patina_compiler::split::split(&shader).expect("splits");
     let compiled = wgsl::compile(&stages, &[], &[], &constant_defaults);
     assert!(compiled.is_ok(), "{:?}", compiled.err());
@@ -211,8 +210,7 @@ fn string_variables_stored_in_straight_line_code_are_known_where_read() {
     use patina_compiler::backend::wgsl;
     // expensive.sl's pattern: a file name made by `concat`, read under a branch.
     let src = "surface s(string base = \"a\"; string ext = \".tex\") {\n    uniform string f = \"\";\n    f = concat(base, ext);\n    color c = 0;\n    if (s > 0.5) {\n        c = color texture(f, s, t);\n    } else {\n        c = 1;\n    }\n    Ci = c;\n}\n";
-    let mut shader = bound(src);
-    patina_compiler::opt::prepare(&mut shader);
+    let shader = patina_compiler::opt::Prepared::new(bound(src));
     let stages = patina_compiler::split::split(&shader).expect("splits");
     let compiled = wgsl::compile(&stages, &[], &[], &constant_defaults);
     assert!(compiled.is_ok(), "{:?}", compiled.err());

@@ -277,8 +277,11 @@ impl Args {
 fn program() -> CpuProgram {
     let checked = patina_compiler::check_source("fractal_test.sl", SHADER, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
 }
 
 /// The five functions at each argument set, evaluated in precision `F`. The parameters are
@@ -588,8 +591,11 @@ impl Args2 {
 fn program2() -> CpuProgram {
     let checked = patina_compiler::check_source("fractal_test2.sl", SHADER2, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
 }
 
 fn eval2<F: Real>(program: &CpuProgram, args: &[Args2]) -> Vec<[f64; 4]> {

@@ -44,8 +44,11 @@ const SHADER: &str = "#include <noise.sl>\n\
 fn program() -> CpuProgram {
     let checked = patina_compiler::check_source("noise_test.sl", SHADER, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
 }
 
 /// (improved_noise, snoise3, noise3) at each point, evaluated in precision `F`.
@@ -435,7 +438,11 @@ fn derivatives_go_through_the_stdlib_code() {
     let src = "#include <noise.sl>\nsurface t() { Ci = filterwidth(improved_noise(P)); }\n";
     let checked = patina_compiler::check_source("noise_deriv.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    let program = CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).expect("compiles");
+    let program = CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .expect("compiles");
     let mut rng = Rng(31);
     let points: Vec<[f64; 3]> = (0..500).map(|_| rng.point(-20.0, 20.0)).collect();
     let column: Vec<f64> = points.iter().flatten().copied().collect();

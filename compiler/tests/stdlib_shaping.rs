@@ -35,8 +35,11 @@ fn program(expr: &str) -> CpuProgram {
     );
     let checked = patina_compiler::check_source("shaping_test.sl", &src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{expr}: {:?}", checked.diagnostics);
-    CpuProgram::compile(&checked.program.shaders[0], &Binding::default())
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    CpuProgram::compile(
+        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
+        &Binding::default(),
+    )
+    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
 }
 
 fn eval<F: Real>(expr: &str, args: &[[f64; 4]]) -> Vec<f64> {

@@ -5,19 +5,19 @@
 //! program with a diagnostic; an internal error (E0799) on a program that checked clean is a bug,
 //! and so is a panic. The one E0799 that is not a bug is the WGSL translator's "cannot translate
 //! this yet" (a construct only the interpreter runs, such as `break 2`): it is a known limit.
-//! The IR is verified (`ir::verify`) after the semantic stage, `opt::prepare` and the split: the
+//! The IR is verified (`ir::verify`) after the semantic stage, `opt::Prepared::new` and the split: the
 //! passes do so themselves in debug builds, and this target does it again so that an optimized
 //! fuzzing build (`cargo fuzz run -O`) checks it too.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::binding::{Binding, BoundLight, LightBinding};
 use patina_compiler::backend::cpu::CpuProgram;
 use patina_compiler::backend::defaults::constant_defaults;
-use patina_compiler::backend::wgsl::{self, BoundLight};
+use patina_compiler::backend::wgsl;
 use patina_compiler::diag::{Code, Diagnostic};
-use patina_compiler::ir::Shader;
 use patina_compiler::ir::verify::{Pass, VerifyError, verify, verify_stages};
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 
@@ -44,24 +44,20 @@ fuzz_target!(|data: &[u8]| {
     if checked.has_errors() {
         return;
     }
-    let prepared: Vec<Shader> = checked
+    let prepared: Vec<Prepared> = checked
         .program
         .shaders
         .iter()
         .map(|s| {
             verified(verify(s, Pass::Rates));
-            let mut s = s.clone();
-            patina_compiler::opt::prepare(&mut s);
+            let s = Prepared::new(s.clone());
             verified(verify(&s, Pass::Prepare));
             s
         })
         .collect();
-    let lights: Vec<&Shader> =
+    let lights: Vec<&Prepared> =
         prepared.iter().filter(|s| s.kind == ShaderKind::Light && !s.stanford).collect();
-    let light_bindings: Vec<LightBinding> = lights
-        .iter()
-        .map(|l| LightBinding::of(l, &[]))
-        .collect();
+    let light_bindings: Vec<LightBinding> = lights.iter().map(|l| LightBinding::of(l, &[])).collect();
     let bound: Vec<BoundLight> = lights
         .iter()
         .map(|s| BoundLight { shader: s, strings: Vec::new(), categories: Vec::new() })

@@ -16,6 +16,7 @@ mod timing;
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, Kernel, compile_kernel};
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
 use timing::median;
@@ -49,21 +50,19 @@ const VARIANTS: &[(&str, &str, &str)] = &[
 ];
 
 /// The shader of a variant, or `None` when the stdlib does not define what it calls (yet).
-fn program(module: &str, expr: &str) -> Option<(patina_compiler::ir::Shader, CpuProgram)> {
+fn program(module: &str, expr: &str) -> Option<(Prepared, CpuProgram)> {
     let src = format!("#include <{module}>\nsurface bench() {{ Ci = color({expr}, 0, 0); }}\n");
     let checked = patina_compiler::check_source("bench.sl", &src, &MemoryLoader::default());
     if checked.has_errors() {
         return None;
     }
-    let shader = checked.program.shaders.into_iter().next()?;
+    let shader = Prepared::new(checked.program.shaders.into_iter().next()?);
     let cpu = CpuProgram::compile(&shader, &Binding::default()).ok()?;
     Some((shader, cpu))
 }
 
-fn kernel(shader: &patina_compiler::ir::Shader) -> Kernel {
-    let mut diff = shader.clone();
-    patina_compiler::opt::derivs::differentiate(&mut diff);
-    compile_kernel(&diff, &[], &[], &["P"], &["Ci"]).expect("the WGSL backend compiles the variant")
+fn kernel(shader: &Prepared) -> Kernel {
+    compile_kernel(shader, &[], &[], &["P"], &["Ci"]).expect("the WGSL backend compiles the variant")
 }
 
 /// Sample points over many cells, both signs.

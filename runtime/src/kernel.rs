@@ -9,8 +9,8 @@ use patina_compiler::backend::cpu::Texture;
 use patina_compiler::backend::wgsl::interface::UniformSource;
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, KernelValue, Lowering, compile_kernel_lowered};
 use patina_compiler::diag::Diagnostic;
-use patina_compiler::ir::Shader;
 use patina_compiler::ir::types::Base;
+use patina_compiler::opt::Prepared;
 
 use crate::gpu::{Gpu, GpuError};
 
@@ -56,15 +56,14 @@ impl From<GpuError> for KernelError {
     }
 }
 
-/// Runs `shader` (as the semantic stage produced it; it is differentiated here, as the
-/// interpreter's compile does) on the GPU with `lights` bound (their values are inputs `L[k]`,
+/// Runs `shader` on the GPU with `lights` bound (their values are inputs `L[k]`,
 /// `Cl[k]`), one invocation per point, and returns each named output as one column.
 ///
 /// Values cross as the kernel stores them: floats rounded to f32, integers as i32 or u32 (the
 /// f64 value truncated and wrapped), booleans as 0 or 1.
 pub fn run_kernel(
     gpu: &Gpu,
-    shader: &Shader,
+    shader: &Prepared,
     lights: &[LightBinding],
     count: usize,
     inputs: &Columns,
@@ -76,16 +75,14 @@ pub fn run_kernel(
 /// As [`run_kernel`], the kernel written in `lowering`.
 pub fn run_kernel_lowered(
     gpu: &Gpu,
-    shader: &Shader,
+    shader: &Prepared,
     lights: &[LightBinding],
     lowering: Lowering,
     count: usize,
     inputs: &Columns,
     outputs: &[&str],
 ) -> Result<Vec<Vec<f64>>, KernelError> {
-    let mut diff = shader.clone();
-    patina_compiler::opt::derivs::differentiate(&mut diff);
-    run_prepared(gpu, &diff, &Resources { lights, lowering, ..Resources::default() }, count, inputs, outputs)
+    run_prepared(gpu, shader, &Resources { lights, lowering, ..Resources::default() }, count, inputs, outputs)
 }
 
 /// What a kernel reads besides its per-point columns.
@@ -104,11 +101,10 @@ pub struct Resources<'a> {
     pub lowering: Lowering,
 }
 
-/// As [`run_kernel`], for a shader already differentiated (`opt::prepare` or `differentiate`),
-/// with the string values, spaces and textures of `resources`.
+/// As [`run_kernel`], with the string values, spaces and textures of `resources`.
 pub fn run_prepared(
     gpu: &Gpu,
-    shader: &Shader,
+    shader: &Prepared,
     resources: &Resources,
     count: usize,
     inputs: &Columns,

@@ -51,7 +51,7 @@ pub fn run(args: EvalArgs) -> Result<ExitCode, String> {
         let (k, v) = s.split_once('=').ok_or_else(|| format!("`--string {s}`: expected NAME=VALUE"))?;
         binding.strings.push((k.trim().to_string(), v.to_string()));
     }
-    let program = match CpuProgram::compile(shader, &binding) {
+    let program = match CpuProgram::compile(&patina_compiler::opt::Prepared::new(shader.clone()), &binding) {
         Ok(p) => p,
         Err(d) => {
             eprint!("{}", diag::render_text(&checked.sources, &[d]));

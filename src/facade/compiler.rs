@@ -5,12 +5,13 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use patina_compiler::backend::binding::Binding;
+use patina_compiler::backend::binding::{Binding, BoundLight};
 use patina_compiler::backend::cpu::CpuProgram;
-use patina_compiler::backend::defaults::constant_defaults;
-use patina_compiler::backend::wgsl::{self, BoundLight, Lowering};
+use patina_compiler::backend::object::{Beside, CompiledObject, HostPart, compile_object};
+use patina_compiler::backend::wgsl::Lowering;
 use patina_compiler::bind::{Consumed, Fixed};
 use patina_compiler::diag::{Diagnostic, Severity};
+use patina_compiler::opt::Prepared;
 use patina_compiler::source::SourceMap;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
@@ -219,37 +220,22 @@ impl Compiler {
             }
             None => None,
         };
-        let split = if self.fold_host {
-            patina_compiler::split::split_folding_host
-        } else {
-            patina_compiler::split::split
+        let host_part = if self.fold_host { HostPart::Folded } else { HostPart::Interpreted };
+        let compiled = {
+            let bound: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
+            let beside = Beside {
+                lights: &bound,
+                displacement: displacement.as_ref().map(|d| d.loaded.bound()),
+                atmosphere: atmosphere.as_ref().map(|a| a.loaded.bound()),
+            };
+            compile_object(&surface.shader, &surface.strings, &beside, self.lowering, host_part)
         };
-        let stages = split(&surface.shader).map_err(|d| internal(d, &surface))?;
-        let bound: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
-        let bound_displacement = displacement.as_ref().map(|d| d.loaded.bound());
-        let bound_atmosphere = atmosphere.as_ref().map(|a| a.loaded.bound());
-        let mut gpu = wgsl::compile_shaded(
-            &stages,
-            bound_displacement.as_ref(),
-            bound_atmosphere.as_ref(),
-            &bound,
-            &surface.strings,
-            self.lowering,
-            &constant_defaults,
-        )
-        .map_err(|d| internal(d, &surface))?;
-        drop((bound, bound_displacement, bound_atmosphere));
+        let CompiledObject { stages, mut gpu, host, vertex, fragment } =
+            compiled.map_err(|d| internal(d, &surface))?;
         for p in &mut gpu.interface.params {
             p.fixed = surface.params.iter().find(|(n, _)| *n == p.name).map(|(_, v)| v.clone());
         }
         let wgsl = gpu.wgsl().map_err(|d| internal(d, &surface))?;
-        let binding = Binding {
-            lights: patina_runtime::render::program::light_bindings(&lights),
-            strings: surface.strings.clone(),
-        };
-        let program = |s| CpuProgram::compile(s, &binding).map_err(|d| internal(d, &surface));
-        let (host, vertex, fragment) =
-            (program(&stages.host)?, program(&stages.vertex)?, program(&stages.fragment)?);
         let program = SurfaceProgram {
             loaded: surface,
             stages,
@@ -391,8 +377,7 @@ impl Compiler {
             numbers.iter().map(|(n, v)| Fixed { name: n.clone(), value: v.clone() }).collect();
         // A user's program may read any output parameter: keep them all.
         let bound = patina_compiler::bind::specialize(found, &fixed, &strings, Consumed::All);
-        let mut shader = bound.shader;
-        patina_compiler::opt::prepare(&mut shader);
+        let shader = Prepared::new(bound.shader);
         let loaded = LoadedShader { shader, strings, params: numbers, decisions: bound.decisions, sources };
         Ok(Loaded { shader: loaded, warnings })
     }

@@ -7,7 +7,7 @@ use glam::{Mat4, Vec3};
 use patina_compiler::backend::wgsl::interface::UniformSource;
 use patina_runtime::camera::Camera;
 use patina_runtime::render::frame::{Frame, HostValues, uniform_bytes};
-use patina_runtime::render::program::{evaluate_params, host_outputs, to_current};
+use patina_runtime::render::program::{evaluate_params, to_current};
 
 use super::{Compiled, Value, components};
 
@@ -239,7 +239,7 @@ impl<'c> Uniforms<'c> {
             &current(&program.loaded.shader, &self.surface),
             &frame.spaces,
             Some(&frame),
-            &host_outputs(&program.stages),
+            &program.stages.host_outputs(),
         )
         .map_err(host)?;
         let mut lights = Vec::new();

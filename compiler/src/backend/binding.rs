@@ -2,8 +2,8 @@
 //! its string parameters. Both backends bind lights late and the same way (ARCHITECTURE.md,
 //! "Departures from DESIGN.md"): light loops and light sums are unrolled over exactly these
 //! lights, `illuminance` selects them by category, and `lightsource` reads their parameters, so
-//! the description of a binding is theirs in common: the runtime makes the interpreter's with
-//! [`LightBinding::of`], and the WGSL backend makes its own from the same function.
+//! the description of a binding is theirs in common: both make it from a [`BoundLight`] with
+//! [`BoundLight::binding`] (or from a light shader with [`LightBinding::of`]).
 //!
 //! It lives beside the backends rather than in `bind/`: `bind` rewrites the IR before the stages
 //! are split, while a binding is applied by each backend as it lowers the stages.
@@ -12,6 +12,30 @@ use smol_str::SmolStr;
 
 use crate::ir::types::Type;
 use crate::ir::{ExprKind, LocalKind, Shader};
+use crate::opt::Prepared;
+
+/// A shader bound beside a surface (a light, a displacement or an atmosphere), with the values
+/// of its string parameters.
+#[derive(Clone, Debug)]
+pub struct BoundLight<'a> {
+    /// The shader.
+    pub shader: &'a Prepared,
+    /// Its string parameters' values.
+    pub strings: Vec<(String, String)>,
+    /// Categories besides those its `__category` parameter names (for `illuminance("category",
+    /// ...)`).
+    pub categories: Vec<String>,
+}
+
+impl BoundLight<'_> {
+    /// The light's binding as both backends apply it: [`LightBinding::of`] its shader and
+    /// strings, in its extra categories too.
+    pub fn binding(&self) -> LightBinding {
+        let mut binding = LightBinding::of(self.shader, &self.strings);
+        binding.categories.extend(self.categories.iter().cloned());
+        binding
+    }
+}
 
 /// What the program is compiled for: the decisions that change its code.
 #[derive(Clone, Debug, Default, PartialEq)]

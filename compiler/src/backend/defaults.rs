@@ -5,7 +5,7 @@
 
 use super::binding::Binding;
 use super::cpu::{CpuProgram, Evaluator, SlotKind};
-use crate::ir::Shader;
+use crate::opt::Prepared;
 
 /// The defaults of the parameters of `host` (a whole shader, or a host stage) that do not depend
 /// on the view, by name: the program is run twice in f64, once with every space the identity and
@@ -13,7 +13,7 @@ use crate::ir::Shader;
 /// when both runs agree (a default read from a space or a predefined variable, such as `point
 /// "shader" (0, 0, 0)`, is left to the host). `strings` are its string parameters' values. Empty
 /// when the program cannot run on its own.
-pub fn constant_defaults(host: &Shader, strings: &[(String, String)]) -> Vec<(String, Vec<f64>)> {
+pub fn constant_defaults(host: &Prepared, strings: &[(String, String)]) -> Vec<(String, Vec<f64>)> {
     let binding = Binding { lights: Vec::new(), strings: strings.to_vec() };
     let Ok(program) = CpuProgram::compile(host, &binding) else { return Vec::new() };
     let names: Vec<String> = program

@@ -3,13 +3,14 @@
 //! other: what they must agree on lives here, beside them: the [`binding`] of a shader to its
 //! lights and strings, the `match` built-in's [`pattern`] matcher, the names of the inputs both
 //! read ([`POINT_INDEX`], [`CLIP_INPUT`]), the fixed point of a uniform `random()`
-//! ([`UNIFORM_RANDOM_POINT`]) and the loop cap ([`MAX_LOOP_ITERATIONS`]). [`defaults`] is the one
-//! piece that joins them: the interpreter computing the parameter defaults a GPU program's
-//! interface lists.
+//! ([`UNIFORM_RANDOM_POINT`]) and the loop cap ([`MAX_LOOP_ITERATIONS`]). Two pieces join them:
+//! [`defaults`], the interpreter computing the parameter defaults a GPU program's interface
+//! lists, and [`object`], a surface split and compiled for both at once (what a renderer needs).
 
 pub mod binding;
 pub mod cpu;
 pub mod defaults;
+pub mod object;
 pub(crate) mod pattern;
 pub mod wgsl;
 

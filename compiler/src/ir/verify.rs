@@ -47,7 +47,7 @@ pub enum Pass {
     Textures,
     /// `opt::shadow::expand`: no shadow-map lookup remains.
     Shadows,
-    /// The whole of `opt::prepare`: what the three passes above each guarantee.
+    /// The whole of `opt::Prepared::new`: what the three passes above each guarantee.
     Prepare,
     /// `split`: one stage, which reads only values of its own stage or lower.
     Split(StageKind),
@@ -94,7 +94,7 @@ impl fmt::Display for Pass {
             Pass::Derivatives => f.write_str("opt::derivs::differentiate"),
             Pass::Textures => f.write_str("opt::textures::expand"),
             Pass::Shadows => f.write_str("opt::shadow::expand"),
-            Pass::Prepare => f.write_str("opt::prepare"),
+            Pass::Prepare => f.write_str("opt::Prepared::new"),
             Pass::Split(stage) => write!(f, "split ({} stage)", stage.name()),
         }
     }
@@ -1004,7 +1004,7 @@ impl Verifier<'_> {
 
     // --- pass-specific --------------------------------------------------------------------
 
-    /// What `opt::prepare`'s passes leave: no derivative built-ins, no texture or shadow lookups.
+    /// What `opt::Prepared::new`'s passes leave: no derivative built-ins, no texture or shadow lookups.
     fn prepared(&mut self) {
         let s = self.shader;
         for (i, e) in s.exprs.iter().enumerate() {

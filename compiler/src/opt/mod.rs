@@ -11,16 +11,58 @@ pub mod derivs;
 pub mod shadow;
 pub mod textures;
 
-/// What every backend runs a checked shader through first: the footprints of environment lookups
-/// (`textures::footprints`, derivative consumers), derivatives, then texture lookups,
-/// then shadow-map lookups.
-///
-/// Each pass checks its own result in debug builds (`ir::verify`); the whole is checked once more
-/// for what the backends rely on, all three passes' guarantees at once.
-pub fn prepare(shader: &mut crate::ir::Shader) {
-    textures::footprints(shader);
-    derivs::differentiate(shader);
-    textures::expand(shader);
-    shadow::expand(shader);
-    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Prepare);
+use crate::ir::Shader;
+
+/// A shader through the passes every backend shares (the footprints of environment lookups,
+/// derivatives, texture and shadow-map lookups): the one form the backends take. It is made only
+/// by [`Prepared::new`], or by a split, whose stages are slices of a prepared shader; so a backend
+/// can be handed neither a shader those passes have not seen nor one they have seen twice.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Prepared(Shader);
+
+impl Prepared {
+    /// Runs a checked (and possibly bound) shader through the shared passes.
+    ///
+    /// Each pass checks its own result in debug builds (`ir::verify`); the whole is checked once
+    /// more for what the backends rely on, all three passes' guarantees at once.
+    pub fn new(mut shader: Shader) -> Prepared {
+        textures::footprints(&mut shader);
+        derivs::differentiate(&mut shader);
+        textures::expand(&mut shader);
+        shadow::expand(&mut shader);
+        crate::ir::verify::assert_valid(&shader, crate::ir::verify::Pass::Prepare);
+        Prepared(shader)
+    }
+
+    /// A shader known to be prepared already: a stage sliced from a prepared shader, or one a
+    /// test ran through the passes one by one.
+    pub(crate) fn assume_prepared(shader: Shader) -> Prepared {
+        Prepared(shader)
+    }
+
+    /// The prepared shader.
+    pub fn shader(&self) -> &Shader {
+        &self.0
+    }
+
+    /// The prepared shader, to own.
+    pub fn into_shader(self) -> Shader {
+        self.0
+    }
+}
+
+impl std::ops::Deref for Prepared {
+    type Target = Shader;
+
+    fn deref(&self) -> &Shader {
+        &self.0
+    }
+}
+
+/// Tests break prepared IR by hand to see `ir::verify` refuse it.
+#[cfg(test)]
+impl std::ops::DerefMut for Prepared {
+    fn deref_mut(&mut self) -> &mut Shader {
+        &mut self.0
+    }
 }

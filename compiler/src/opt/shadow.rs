@@ -53,7 +53,7 @@ struct Options {
 }
 
 /// Rewrites every `shadow` lookup of `shader` into texel fetches and arithmetic.
-pub fn expand(shader: &mut Shader) {
+pub(crate) fn expand(shader: &mut Shader) {
     let lookups: Vec<ExprId> = (0..shader.exprs.len() as u32)
         .map(ExprId)
         .filter(|id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if b.name == "shadow"))

@@ -60,7 +60,7 @@ use crate::sema::globals;
 
 /// Rewrites every `texture`, `texture3d` and `environment` lookup of `shader` into texel fetches
 /// and arithmetic.
-pub fn expand(shader: &mut Shader) {
+pub(crate) fn expand(shader: &mut Shader) {
     let lookups: Vec<ExprId> = (0..shader.exprs.len() as u32)
         .map(ExprId)
         .filter(|id| {
@@ -135,7 +135,7 @@ const FOOTPRINT: &str = "__footprint";
 /// derivatives); for the four-direction form the largest distance from the first direction to
 /// the others. Runs before `opt::derivs`, which rewrites `area` into arithmetic on derivatives
 /// (0 for a D that does not vary); `expand` divides w by |D| to make it an angle.
-pub fn footprints(shader: &mut Shader) {
+pub(crate) fn footprints(shader: &mut Shader) {
     let lookups: Vec<ExprId> = (0..shader.exprs.len() as u32)
         .map(ExprId)
         .filter(|id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if b.name == "environment"))

@@ -9,7 +9,7 @@
 //! (loop counters, per-light work, reads of inputs), which keeps every stage a plain,
 //! self-contained program over its own inputs.
 //!
-//! The stages are ordinary [`Shader`]s sharing one numbering of locals and expressions with the
+//! The stages are ordinary [`Shader`](crate::ir::Shader)s (each a [`Prepared`] one, as the input was) sharing one numbering of locals and expressions with the
 //! input: a value that crosses is a parameter local of both stages — an `output` parameter stored
 //! by the producer, and in the consumer the expression is overwritten with a read of that
 //! parameter. Inputs that every stage reads directly (predefined variables and parameters the
@@ -23,8 +23,9 @@ mod tests;
 use smol_str::SmolStr;
 
 use crate::diag::Diagnostic;
+use crate::ir::LocalId;
 use crate::ir::types::{Base, Type};
-use crate::ir::{LocalId, Shader};
+use crate::opt::Prepared;
 use crate::source::Span;
 
 /// A stage of the split program, in execution order.
@@ -87,29 +88,35 @@ impl Transfer {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Stages {
     /// Once per draw: computes the transfers `from` the host.
-    pub host: Shader,
+    pub host: Prepared,
     /// Per vertex: computes the varyings.
-    pub vertex: Shader,
+    pub vertex: Prepared,
     /// Per fragment: computes the outputs.
-    pub fragment: Shader,
+    pub fragment: Prepared,
     /// The values that cross between stages.
     pub transfers: Vec<Transfer>,
 }
 
 impl Stages {
     /// The shader of one stage.
-    pub fn stage(&self, kind: StageKind) -> &Shader {
+    pub fn stage(&self, kind: StageKind) -> &Prepared {
         match kind {
             StageKind::Host => &self.host,
             StageKind::Vertex => &self.vertex,
             StageKind::Fragment => &self.fragment,
         }
     }
+
+    /// The names of the values the host stage hands to the others (what the host program's
+    /// run must read back besides the parameters).
+    pub fn host_outputs(&self) -> Vec<String> {
+        self.transfers.iter().filter(|t| t.from == StageKind::Host).map(|t| t.name.to_string()).collect()
+    }
 }
 
-/// Splits a shader that has been through `opt::derivs` into its stages. An error is an internal
-/// one: a value the placement put in a stage that cannot compute it.
-pub fn split(shader: &Shader) -> Result<Stages, Diagnostic> {
+/// Splits a prepared shader into its stages. An error is an internal one: a value the placement
+/// put in a stage that cannot compute it.
+pub fn split(shader: &Prepared) -> Result<Stages, Diagnostic> {
     let stages = slice::split(shader, false)?;
     crate::ir::verify::assert_valid_stages(&stages);
     Ok(stages)
@@ -119,7 +126,7 @@ pub fn split(shader: &Shader) -> Result<Stages, Diagnostic> {
 /// the uniform block holds only parameters, predefined variables, spaces and geometry, which a
 /// program without Patina's interpreter can fill, and the vertex and fragment stages recompute
 /// what the host would have computed once per draw (the cost of needing no host code).
-pub fn split_folding_host(shader: &Shader) -> Result<Stages, Diagnostic> {
+pub fn split_folding_host(shader: &Prepared) -> Result<Stages, Diagnostic> {
     let stages = slice::split(shader, true)?;
     crate::ir::verify::assert_valid_stages(&stages);
     Ok(stages)

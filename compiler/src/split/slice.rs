@@ -14,6 +14,7 @@ use super::{StageKind, Stages, Transfer, Var};
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Frequency};
 use crate::ir::{Block, ExprId, ExprKind, Local, LocalId, LocalKind, Place, Shader, Stmt};
+use crate::opt::Prepared;
 
 /// A value one stage asked a lower stage for.
 struct Request {
@@ -111,9 +112,9 @@ pub(super) fn split(shader: &Shader, fold_host: bool) -> Result<Stages, Diagnost
         Ok(out)
     };
     Ok(Stages {
-        host: build(StageKind::Host)?,
-        vertex: build(StageKind::Vertex)?,
-        fragment: build(StageKind::Fragment)?,
+        host: Prepared::assume_prepared(build(StageKind::Host)?),
+        vertex: Prepared::assume_prepared(build(StageKind::Vertex)?),
+        fragment: Prepared::assume_prepared(build(StageKind::Fragment)?),
         transfers,
     })
 }

@@ -4,15 +4,14 @@
 use super::{StageKind, Stages, split, split_folding_host};
 use crate::backend::binding::Binding;
 use crate::backend::cpu::{CpuProgram, Evaluator};
-use crate::ir::{Shader, Stmt};
+use crate::ir::Stmt;
+use crate::opt::Prepared;
 use crate::syntax::preprocess::MemoryLoader;
 
-fn shader(src: &str) -> Shader {
+fn shader(src: &str) -> Prepared {
     let checked = crate::check_source("split.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    let mut shader = checked.program.shaders[0].clone();
-    crate::opt::derivs::differentiate(&mut shader);
-    shader
+    Prepared::new(checked.program.shaders[0].clone())
 }
 
 /// Inputs of one evaluation: uniform values and per-point columns.
@@ -23,7 +22,7 @@ struct Case<'a> {
     output: &'a str,
 }
 
-fn run_whole(shader: &Shader, case: &Case) -> Vec<f64> {
+fn run_whole(shader: &Prepared, case: &Case) -> Vec<f64> {
     let program = CpuProgram::compile(shader, &Binding::default()).unwrap();
     let mut eval = Evaluator::<f64>::new(&program);
     for (name, v) in case.uniforms {
@@ -243,8 +242,7 @@ fn every_example_shader_splits() {
         let loader = crate::syntax::preprocess::FsLoader { include_dirs: vec![] };
         let checked = crate::check_source(&path.display().to_string(), &text, &loader);
         for s in &checked.program.shaders {
-            let mut s = s.clone();
-            crate::opt::derivs::differentiate(&mut s);
+            let s = Prepared::new(s.clone());
             if let Err(d) = split(&s) {
                 panic!("{}: {}: {}", path.display(), s.name, d.message);
             }

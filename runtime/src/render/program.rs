@@ -9,13 +9,14 @@ use patina_compiler::bind::{Consumed, Decision, Fixed};
 use patina_compiler::source::SourceMap;
 
 use glam::{Mat4, Vec3, Vec4};
-use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::binding::{Binding, BoundLight, LightBinding};
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, SlotKind};
-use patina_compiler::backend::defaults::constant_defaults;
-use patina_compiler::backend::wgsl::{self, BoundLight, GpuProgram, Lowering};
+use patina_compiler::backend::object::{Beside, CompiledObject, HostPart, compile_object};
+use patina_compiler::backend::wgsl::{GpuProgram, Lowering};
 use patina_compiler::ir::types::{Base, Type};
 use patina_compiler::ir::{ExprKind, Literal, Shader};
-use patina_compiler::split::{self, Stages};
+use patina_compiler::opt::Prepared;
+use patina_compiler::split::Stages;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
@@ -26,8 +27,8 @@ use crate::scene::{ParamValue, ShaderRef};
 /// A checked shader and the source it came from (kept for rendering diagnostics).
 #[derive(Clone)]
 pub struct LoadedShader {
-    /// The shader, differentiated.
-    pub shader: Shader,
+    /// The shader, bound and prepared.
+    pub shader: Prepared,
     /// Its string parameters' values from the scene.
     pub strings: Vec<(String, String)>,
     /// Its numeric parameters from the scene, in "current" (camera) space.
@@ -103,7 +104,7 @@ pub fn rebind_shaded(
     let mut surface = cached.clone();
     let (_, params) = scene_params(&surface.loaded.shader, shader, world_to_camera)?;
     surface.loaded.params = params;
-    let host_outputs = host_outputs(&surface.stages);
+    let host_outputs = surface.stages.host_outputs();
     surface.uniforms =
         evaluate_params(&surface.host, &surface.loaded.params, &frame.spaces, Some(frame), &host_outputs)?;
     if let (Some(d), Some(shader)) = (&mut surface.displacement, displacement) {
@@ -196,7 +197,7 @@ pub fn load_reading(
         }
     }
     let (strings, params) = scene_params(shader_ir, shader, world_to_camera)?;
-    let (mut shader_ir, decisions) = if specialize {
+    let (shader_ir, decisions) = if specialize {
         let ty = |name: &str| {
             shader_ir.params.iter().map(|p| shader_ir.local(*p)).find(|l| l.name == name).map(|l| l.ty)
         };
@@ -216,9 +217,8 @@ pub fn load_reading(
     } else {
         (shader_ir.clone(), Vec::new())
     };
-    patina_compiler::opt::prepare(&mut shader_ir);
     Ok(LoadedShader {
-        shader: shader_ir,
+        shader: Prepared::new(shader_ir),
         strings,
         params,
         decisions,
@@ -350,8 +350,6 @@ pub fn shaded_program(
     lowering: Lowering,
 ) -> Result<SurfaceProgram, RenderError> {
     let spaces = &frame.spaces;
-    let stages = split::split(&loaded.shader).map_err(|d| RenderError::Compile(d.message))?;
-    let bound: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
     let beside = |d: Option<LoadedShader>| -> Result<Option<DisplacementProgram>, RenderError> {
         let Some(d) = d else { return Ok(None) };
         let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
@@ -361,31 +359,19 @@ pub fn shaded_program(
     };
     let displacement = beside(displacement)?;
     let atmosphere = beside(atmosphere)?;
-    let bound_displacement = displacement.as_ref().map(|d| d.loaded.bound());
-    let bound_atmosphere = atmosphere.as_ref().map(|a| a.loaded.bound());
-    let gpu = wgsl::compile_shaded(
-        &stages,
-        bound_displacement.as_ref(),
-        bound_atmosphere.as_ref(),
-        &bound,
-        &loaded.strings,
-        lowering,
-        &constant_defaults,
-    )
-    .map_err(|d| RenderError::Compile(d.message))?;
-    let binding = Binding { lights: light_bindings(lights), strings: loaded.strings.clone() };
-    let compile = |s: &Shader| CpuProgram::compile(s, &binding).map_err(|d| RenderError::Compile(d.message));
-    let host = compile(&stages.host)?;
-    let vertex = compile(&stages.vertex)?;
-    let fragment = compile(&stages.fragment)?;
-    let host_outputs = host_outputs(&stages);
-    let uniforms = evaluate_params(&host, &loaded.params, spaces, Some(frame), &host_outputs)?;
+    let compiled = {
+        let lights: Vec<BoundLight> = lights.iter().map(|l| l.loaded.bound()).collect();
+        let beside = Beside {
+            lights: &lights,
+            displacement: displacement.as_ref().map(|d| d.loaded.bound()),
+            atmosphere: atmosphere.as_ref().map(|a| a.loaded.bound()),
+        };
+        compile_object(&loaded.shader, &loaded.strings, &beside, lowering, HostPart::Interpreted)
+    };
+    let CompiledObject { stages, gpu, host, vertex, fragment } =
+        compiled.map_err(|d| RenderError::Compile(d.message))?;
+    let uniforms = evaluate_params(&host, &loaded.params, spaces, Some(frame), &stages.host_outputs())?;
     Ok(SurfaceProgram { loaded, stages, gpu, host, vertex, fragment, uniforms, displacement, atmosphere })
-}
-
-/// The values the host part hands to the other stages, by name.
-pub fn host_outputs(stages: &Stages) -> Vec<String> {
-    stages.transfers.iter().filter(|t| t.from == split::StageKind::Host).map(|t| t.name.to_string()).collect()
 }
 
 /// Runs a program once with the scene's parameter values (and, for an object's programs, its

@@ -168,13 +168,10 @@ pub fn sweep(subject: &Subject, loader: &dyn SourceLoader, options: &Options, gp
     if let (Some(gpu), false) = (gpu, endless) {
         let inputs: Vec<(&str, &[f64])> =
             subject.args.iter().zip(&pts.columns).map(|(a, c)| (a.slot.as_str(), c.as_slice())).collect();
-        // Prepared as the interpreter's compile prepares it: texture lookups become texel
-        // fetches, which the kernel binds (it cannot take a lookup as written).
-        let mut shader = compiled.shader.clone();
-        patina_compiler::opt::prepare(&mut shader);
+        let shader = &compiled.shader;
         let run = |lowering| {
             let resources = Resources { textures: &textures, lowering, ..Resources::default() };
-            run_prepared(gpu, &shader, &resources, pts.count, &inputs, &outputs)
+            run_prepared(gpu, shader, &resources, pts.count, &inputs, &outputs)
         };
         match run(Lowering::Exact) {
             Ok(columns) => {

@@ -9,7 +9,7 @@
 
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::CpuProgram;
-use patina_compiler::ir::Shader;
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::ast::{FunctionDef, Item, Param, ShaderDef, ShaderKind, ShaderStyle, TypeName};
 use patina_compiler::syntax::preprocess::SourceLoader;
 
@@ -49,8 +49,8 @@ pub struct Build {
 
 /// A subject compiled for both backends.
 pub struct Compiled {
-    /// The shader as checked (for the GPU kernel).
-    pub shader: Shader,
+    /// The shader, prepared (for the GPU kernel).
+    pub shader: Prepared,
     /// The interpreter's code.
     pub cpu: CpuProgram,
 }
@@ -255,6 +255,7 @@ impl Build {
             .into_iter()
             .find(|s| s.name == self.shader)
             .ok_or_else(|| format!("no shader `{}` after checking", self.shader))?;
+        let shader = Prepared::new(shader);
         let cpu = CpuProgram::compile(&shader, &Binding::default())
             .map_err(|d| format!("{}: {}", d.code, d.message))?;
         Ok(Compiled { shader, cpu })

@@ -52,12 +52,12 @@ use std::cell::RefCell;
 
 use crate::support::Rng;
 use patina_compiler::backend::POINT_INDEX;
-use patina_compiler::backend::binding::{Binding, LightBinding};
+use patina_compiler::backend::binding::{Binding, BoundLight, LightBinding};
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, SlotKind};
-use patina_compiler::backend::defaults::constant_defaults;
-use patina_compiler::backend::wgsl::{self, BoundLight, KERNEL_WORKGROUP, compile_kernel};
-use patina_compiler::ir::Shader;
+use patina_compiler::backend::object::{Beside, HostPart, compile_object};
+use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, Lowering, compile_kernel};
 use patina_compiler::ir::types::Base;
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::{self, Gpu};
@@ -127,8 +127,10 @@ fn run(gpu: &Gpu, program: &generator::Program, totals: &mut Totals) -> Result<(
         ));
     }
     let shaders = checked.program.shaders;
-    let surface = shaders.iter().find(|s| s.kind == ShaderKind::Surface).ok_or("no surface")?.clone();
-    let lights: Vec<Shader> = shaders.into_iter().filter(|s| s.kind == ShaderKind::Light).collect();
+    let surface =
+        Prepared::new(shaders.iter().find(|s| s.kind == ShaderKind::Surface).ok_or("no surface")?.clone());
+    let lights: Vec<Prepared> =
+        shaders.into_iter().filter(|s| s.kind == ShaderKind::Light).map(Prepared::new).collect();
     if lights.len() != program.lights {
         return Err(format!("{} lights in the source, {} bound", lights.len(), program.lights));
     }
@@ -265,41 +267,29 @@ fn run(gpu: &Gpu, program: &generator::Program, totals: &mut Totals) -> Result<(
 }
 
 /// The render path: the surface split into stages and compiled with its lights into the vertex and
-/// fragment module (which `wgsl::compile` validates with naga's validator).
-fn render_module(surface: &Shader, lights: &[Shader]) -> Result<(), String> {
-    let mut surface = surface.clone();
-    patina_compiler::opt::prepare(&mut surface);
-    let lights: Vec<Shader> = lights
-        .iter()
-        .map(|l| {
-            let mut l = l.clone();
-            patina_compiler::opt::prepare(&mut l);
-            l
-        })
-        .collect();
-    let stages = patina_compiler::split::split(&surface).map_err(|d| format!("the split: {}", d.message))?;
+/// fragment module (which the WGSL backend validates with naga's validator).
+fn render_module(surface: &Prepared, lights: &[Prepared]) -> Result<(), String> {
     let bound: Vec<BoundLight> = lights
         .iter()
         .map(|l| BoundLight { shader: l, strings: Vec::new(), categories: Vec::new() })
         .collect();
-    wgsl::compile(&stages, &bound, &[], &constant_defaults)
-        .map_err(|d| format!("the render path's module: {}", d.message))?;
+    let beside = Beside { lights: &bound, ..Beside::default() };
+    compile_object(surface, &[], &beside, Lowering::Exact, HostPart::Interpreted)
+        .map_err(|d| format!("the render path: {}", d.message))?;
     Ok(())
 }
 
 /// Runs the surface as a compute kernel over every point; one column per output.
 fn gpu_run(
     gpu: &Gpu,
-    surface: &Shader,
+    surface: &Prepared,
     lights: usize,
     inputs: &[(String, Base, usize, bool)],
     values: &[Vec<Vec<f64>>],
     outputs: &[&str],
 ) -> Result<Vec<Vec<f64>>, String> {
-    let mut diff = surface.clone();
-    patina_compiler::opt::prepare(&mut diff);
     let names: Vec<&str> = inputs.iter().map(|(n, ..)| n.as_str()).collect();
-    let kernel = compile_kernel(&diff, &vec![LightBinding::default(); lights], &[], &names, outputs)
+    let kernel = compile_kernel(surface, &vec![LightBinding::default(); lights], &[], &names, outputs)
         .map_err(|d| format!("the kernel: {}", d.message))?;
     let total = BATCHES * POINTS;
     let stride = kernel.input_stride as usize;

@@ -12,6 +12,7 @@ use patina_compiler::backend::binding::{Binding, LightBinding};
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, SlotKind};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, Lowering, compile_kernel_lowered};
 use patina_compiler::ir::types::{Base, Type};
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
 
@@ -109,7 +110,7 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
         let msgs: Vec<String> = checked.diagnostics.iter().map(|d| d.message.clone()).collect();
         panic!("the test shader does not check:\n{}\n{}", msgs.join("\n"), numbered(&spec.src));
     }
-    let shader = &checked.program.shaders[0];
+    let shader = &Prepared::new(checked.program.shaders[0].clone());
     let binding = Binding { lights: spec.lights.clone(), strings: vec![] };
     let program = CpuProgram::compile(shader, &binding)
         .unwrap_or_else(|d| panic!("the interpreter rejects the test shader: {}", d.message));
@@ -182,10 +183,8 @@ pub fn run(gpu: &Gpu, spec: &Spec, values: &dyn Fn(&Input) -> Vec<f64>) -> usize
     }
 
     // The GPU: one kernel over every batch's points.
-    let mut diff = shader.clone();
-    patina_compiler::opt::prepare(&mut diff);
     let names: Vec<&str> = inputs.iter().map(|(n, _, _)| n.as_str()).collect();
-    let kernel = compile_kernel_lowered(&diff, &spec.lights, &[], &names, &outputs, spec.lowering)
+    let kernel = compile_kernel_lowered(shader, &spec.lights, &[], &names, &outputs, spec.lowering)
         .unwrap_or_else(|d| panic!("the WGSL backend rejects the test shader: {}", d.message));
     let total = batches * points;
     let mut record = Vec::with_capacity(total * kernel.input_stride as usize * 4);

@@ -15,6 +15,7 @@ use crate::support;
 
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::CpuProgram;
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Image, Thresholds};
 use patina_test_support::Rng;
@@ -176,7 +177,8 @@ fn fur_program() -> CpuProgram {
     assert!(checked.diagnostics.is_empty(), "{:#?}", checked.diagnostics);
     let shader =
         checked.program.shaders.into_iter().find(|s| s.name == "kajiya_kay_fur").expect("the shader");
-    CpuProgram::compile(&shader, &Binding::default()).unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    CpuProgram::compile(&Prepared::new(shader), &Binding::default())
+        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
 }
 
 /// The tube radius of the torus mesh (the outer surface of the fur shell) and the scene's defaults.

@@ -4,6 +4,7 @@
 use patina_compiler::backend::MAX_LOOP_ITERATIONS;
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::{CpuProgram, EvalError, Evaluator};
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::{
     Address, Blend, Draw, Filter, GpuError, Target, TargetFormat, TextureData, TextureDimension,
@@ -134,7 +135,7 @@ const UNBOUNDED: &str = "surface t(float start = 1) {
 fn an_unbounded_loop_stops_at_the_cap_on_the_gpu_and_is_e0702_in_the_interpreter() {
     let checked = patina_compiler::check_source("loop.sl", UNBOUNDED, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    let shader = &checked.program.shaders[0];
+    let shader = &Prepared::new(checked.program.shaders[0].clone());
     // The interpreter, with its default budget (the cap): the loop's error, with its position.
     let program = CpuProgram::compile(shader, &Binding::default()).expect("compiles");
     let mut eval = Evaluator::<f32>::new(&program);

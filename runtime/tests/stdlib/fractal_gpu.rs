@@ -16,6 +16,7 @@
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;
 
@@ -99,7 +100,7 @@ fn fractal_sums_on_the_gpu_match_the_interpreter() {
     let Some(gpu) = gpu::for_tests() else { return };
     let checked = patina_compiler::check_source("fractal_gpu.sl", SHADER, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    let shader = &checked.program.shaders[0];
+    let shader = &Prepared::new(checked.program.shaders[0].clone());
     let args = args();
     let n = args.len();
 
@@ -121,9 +122,7 @@ fn fractal_sums_on_the_gpu_match_the_interpreter() {
         .collect();
 
     // The GPU: one invocation per argument set.
-    let mut diff = shader.clone();
-    patina_compiler::opt::derivs::differentiate(&mut diff);
-    let kernel = compile_kernel(&diff, &[], &[], &INPUTS, &["Ci", "Oi"])
+    let kernel = compile_kernel(shader, &[], &[], &INPUTS, &["Ci", "Oi"])
         .expect("the WGSL backend compiles fractal.sl");
     assert_eq!((kernel.input_stride, kernel.output_stride), (9, 6));
     let input: Vec<u8> = args.iter().flatten().flat_map(|x| x.to_bits().to_le_bytes()).collect();

@@ -11,13 +11,13 @@ use crate::support::{Rng, assert_finite, extremes, worst};
 use patina_compiler::backend::binding::{Binding, LightBinding};
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
-use patina_compiler::ir::Shader;
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
 
 /// A checked shader with its lights, ready for both backends.
 struct Lit {
-    shader: Shader,
+    shader: Prepared,
     cpu: CpuProgram,
     lights: Vec<LightBinding>,
 }
@@ -26,7 +26,9 @@ struct Lit {
 fn lit(source: &str, name: &str, lights: Vec<LightBinding>) -> Lit {
     let checked = patina_compiler::check_source("stdlib_lighting.sl", source, &MemoryLoader::default());
     assert!(checked.diagnostics.is_empty(), "{:#?}\nin\n{source}", checked.diagnostics);
-    let shader = checked.program.shaders.into_iter().find(|s| s.name == name).expect("the shader exists");
+    let shader = Prepared::new(
+        checked.program.shaders.into_iter().find(|s| s.name == name).expect("the shader exists"),
+    );
     let binding = Binding { lights: lights.clone(), strings: vec![] };
     let cpu = CpuProgram::compile(&shader, &binding).unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
     Lit { shader, cpu, lights }

@@ -17,6 +17,7 @@
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu;
 use patina_test_support::Rng;
@@ -89,16 +90,14 @@ fn shaping_on_the_gpu_agrees_with_the_interpreter() {
         );
         let checked = patina_compiler::check_source("shaping_gpu.sl", &src, &MemoryLoader::default());
         assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-        let shader = &checked.program.shaders[0];
+        let shader = &Prepared::new(checked.program.shaders[0].clone());
 
         let program = CpuProgram::compile(shader, &Binding::default()).expect("the interpreter compiles");
         let inputs: Vec<(&str, &[f64])> =
             ["s", "t", "u", "v"].iter().zip(&columns).map(|(n, c)| (*n, c.as_slice())).collect();
         let cpu = Evaluator::<f32>::new(&program).eval_points(n, &inputs, &["Ci", "Oi"]).expect("evaluation");
 
-        let mut diff = shader.clone();
-        patina_compiler::opt::derivs::differentiate(&mut diff);
-        let kernel = compile_kernel(&diff, &[], &[], &["s", "t", "u", "v"], &["Ci", "Oi"])
+        let kernel = compile_kernel(shader, &[], &[], &["s", "t", "u", "v"], &["Ci", "Oi"])
             .expect("the WGSL backend compiles pattern.sl");
         assert_eq!((kernel.input_stride, kernel.output_stride), (4, 6));
         let groups = (n as u32).div_ceil(KERNEL_WORKGROUP);

@@ -3,6 +3,7 @@
 
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::CpuProgram;
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::image::{Comparison, Image, Thresholds, compare};
 use patina_runtime::render::{self, Backend, Lowering};
@@ -104,7 +105,9 @@ pub fn shader_source(name: &str) -> String {
 pub fn program_named(source: &str, name: &str) -> super::Program {
     let checked = patina_compiler::check_source("gallery_probe.sl", source, &MemoryLoader::default());
     assert!(checked.diagnostics.is_empty(), "{:#?}", checked.diagnostics);
-    let shader = checked.program.shaders.into_iter().find(|s| s.name == name).expect("the probe shader");
+    let shader = Prepared::new(
+        checked.program.shaders.into_iter().find(|s| s.name == name).expect("the probe shader"),
+    );
     let cpu = CpuProgram::compile(&shader, &Binding::default())
         .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
     super::Program { shader, cpu }

@@ -10,7 +10,7 @@ pub mod gallery;
 use patina_compiler::backend::binding::{Binding, LightBinding};
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
-use patina_compiler::ir::Shader;
+use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_runtime::gpu::Gpu;
 // Each test binary uses only part of these.
@@ -19,8 +19,8 @@ pub use patina_test_support::{Rng, assert_finite, extremes, worst};
 
 /// A checked shader, ready for both backends.
 pub struct Program {
-    /// The shader as the semantic stage produced it.
-    pub shader: Shader,
+    /// The shader, prepared for both backends.
+    pub shader: Prepared,
     /// The interpreter's code for it.
     pub cpu: CpuProgram,
 }
@@ -30,7 +30,8 @@ pub struct Program {
 pub fn program(source: &str) -> Program {
     let checked = patina_compiler::check_source("stdlib_test.sl", source, &MemoryLoader::default());
     assert!(checked.diagnostics.is_empty(), "{:#?}\nin\n{source}", checked.diagnostics);
-    let shader = checked.program.shaders.into_iter().next().expect("the source defines a shader");
+    let shader =
+        Prepared::new(checked.program.shaders.into_iter().next().expect("the source defines a shader"));
     let cpu = CpuProgram::compile(&shader, &Binding::default())
         .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message));
     Program { shader, cpu }
@@ -58,7 +59,7 @@ impl Program {
 /// `L[k]`, `Cl[k]`, as for the interpreter), one invocation per point; as [`Program::gpu`].
 pub fn gpu_kernel(
     gpu: &Gpu,
-    shader: &Shader,
+    shader: &Prepared,
     lights: &[LightBinding],
     count: usize,
     inputs: &Columns,

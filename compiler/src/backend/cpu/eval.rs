@@ -4,6 +4,7 @@
 //! ```
 //! use patina_compiler::backend::binding::Binding;
 //! use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
+//! use patina_compiler::opt::Prepared;
 //! use patina_compiler::syntax::preprocess::MemoryLoader;
 //!
 //! let checked = patina_compiler::check_source(
@@ -11,7 +12,8 @@
 //!     "surface ramp(float k = 2) { Ci = color(s * k, t, 0); }",
 //!     &MemoryLoader::default(),
 //! );
-//! let program = CpuProgram::compile(&checked.program.shaders[0], &Binding::default()).unwrap();
+//! let prepared = Prepared::new(checked.program.shaders[0].clone());
+//! let program = CpuProgram::compile(&prepared, &Binding::default()).unwrap();
 //! let mut eval = Evaluator::<f32>::new(&program);
 //! eval.set("k", &[3.0]).unwrap();
 //! let out = eval.eval_points(2, &[("s", &[0.5, 1.0]), ("t", &[0.25, 0.75])], &["Ci"]).unwrap();
@@ -25,8 +27,8 @@ use super::scalar::Real;
 use crate::backend::MAX_LOOP_ITERATIONS;
 use crate::backend::binding::Binding;
 use crate::diag::{Code, Diagnostic};
-use crate::ir::Shader;
 use crate::ir::types::Type;
+use crate::opt::Prepared;
 use crate::source::Span;
 
 /// A shader compiled for the interpreter at one binding (valid for both precisions).
@@ -122,16 +124,9 @@ pub struct SlotInfo {
 }
 
 impl CpuProgram {
-    /// Compiles a checked shader for a binding: the environment lookups' footprints
-    /// (`opt::textures::footprints`), derivatives (`opt::derivs`), texture and shadow-map
-    /// lookups, then the lowering.
-    pub fn compile(shader: &Shader, binding: &Binding) -> Result<CpuProgram, Diagnostic> {
-        let mut shader = shader.clone();
-        crate::opt::textures::footprints(&mut shader);
-        crate::opt::derivs::differentiate(&mut shader);
-        crate::opt::textures::expand(&mut shader);
-        crate::opt::shadow::expand(&mut shader);
-        let lowered = lower::lower(&shader, binding)?;
+    /// Compiles a prepared shader (a whole one, or a stage of its split) for a binding.
+    pub fn compile(shader: &Prepared, binding: &Binding) -> Result<CpuProgram, Diagnostic> {
+        let lowered = lower::lower(shader, binding)?;
         Ok(CpuProgram { lowered })
     }
 

@@ -325,7 +325,7 @@ impl Translator<'_> {
                 return Err(super::internal(
                     span,
                     format!(
-                        "internal error: `{}` reached the WGSL backend without being expanded (opt::prepare)",
+                        "internal error: `{}` reached the WGSL backend without being expanded (opt::Prepared::new)",
                         b.name
                     ),
                 ));
@@ -615,8 +615,7 @@ mod tests {
     fn module(src: &str) -> Result<String, String> {
         let checked = crate::check_source("t.sl", src, &MemoryLoader::default());
         assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-        let mut shader = checked.program.shaders[0].clone();
-        crate::opt::prepare(&mut shader);
+        let shader = crate::opt::Prepared::new(checked.program.shaders[0].clone());
         let stages = crate::split::split(&shader).map_err(|d| d.message)?;
         let program = compile(&stages, &[], &[], &crate::backend::defaults::constant_defaults)
             .map_err(|d| d.message)?;

@@ -23,6 +23,7 @@ use crate::backend::binding::LightBinding;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, Input, Shader};
+use crate::opt::Prepared;
 
 /// One named value of a kernel's input or output.
 #[derive(Clone, Debug, PartialEq)]
@@ -74,9 +75,9 @@ enum Target {
     Private(&'static str),
 }
 
-/// Compiles a differentiated shader as a kernel reading `inputs` and writing `outputs`.
+/// Compiles a prepared shader as a kernel reading `inputs` and writing `outputs`.
 pub fn compile_kernel(
-    shader: &Shader,
+    shader: &Prepared,
     lights: &[LightBinding],
     strings: &[(String, String)],
     inputs: &[&str],
@@ -88,7 +89,7 @@ pub fn compile_kernel(
 /// As [`compile_kernel`], in the given lowering (the fast one measures what users' modules
 /// compute, against the same f64 reference).
 pub fn compile_kernel_lowered(
-    shader: &Shader,
+    shader: &Prepared,
     lights: &[LightBinding],
     strings: &[(String, String)],
     inputs: &[&str],

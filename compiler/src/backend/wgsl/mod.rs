@@ -35,7 +35,7 @@ mod values;
 
 use naga::Span as NSpan;
 
-use crate::backend::binding::LightBinding;
+use crate::backend::binding::{BoundLight, LightBinding};
 use crate::diag::{Code, Diagnostic};
 use crate::ir::Shader;
 use crate::source::Span;
@@ -48,18 +48,6 @@ pub use kernel::{KERNEL_WORKGROUP, Kernel, KernelValue, compile_kernel, compile_
 pub use lowering::Lowering;
 use module::ModuleBuilder;
 pub use params::ParamDefaults;
-
-/// A light or displacement shader bound to a surface, with the values of its string parameters.
-#[derive(Clone, Debug)]
-pub struct BoundLight<'a> {
-    /// The light shader (checked and differentiated).
-    pub shader: &'a Shader,
-    /// Its string parameters' values.
-    pub strings: Vec<(String, String)>,
-    /// Categories besides those its `__category` parameter names (for `illuminance("category",
-    /// ...)`).
-    pub categories: Vec<String>,
-}
 
 /// A compiled GPU program: the module, naga's analysis of it, and its interface.
 #[derive(Clone, Debug)]
@@ -141,15 +129,8 @@ pub fn compile_shaded(
     lowering: Lowering,
     defaults: &ParamDefaults,
 ) -> Result<GpuProgram, Diagnostic> {
-    body::check_light_count(&stages.fragment, &lights.iter().map(|l| l.shader).collect::<Vec<_>>())?;
-    let bindings: Vec<LightBinding> = lights
-        .iter()
-        .map(|l| {
-            let mut binding = LightBinding::of(l.shader, &l.strings);
-            binding.categories.extend(l.categories.iter().cloned());
-            binding
-        })
-        .collect();
+    body::check_light_count(&stages.fragment, &lights.iter().map(|l| l.shader.shader()).collect::<Vec<_>>())?;
+    let bindings: Vec<LightBinding> = lights.iter().map(BoundLight::binding).collect();
     let mut mb = ModuleBuilder::new();
     mb.lowering = lowering;
 
@@ -164,11 +145,11 @@ pub fn compile_shaded(
         t.block(&light.shader.body)?;
         let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
         drop(t);
-        light_functions.push((mb.module.functions.append(f, NSpan::UNDEFINED), light.shader));
+        light_functions.push((mb.module.functions.append(f, NSpan::UNDEFINED), light.shader.shader()));
     }
     let body = |mb: &mut ModuleBuilder, shader: &Shader, name: &str| -> Result<_, Diagnostic> {
         let mut t = Translator::new(mb, shader, "", &bindings, strings, name);
-        t.light_shaders = lights.iter().map(|l| l.shader).collect();
+        t.light_shaders = lights.iter().map(|l| l.shader.shader()).collect();
         t.block(&shader.body)?;
         let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
         drop(t);
@@ -180,7 +161,7 @@ pub fn compile_shaded(
             t.block(&d.shader.body)?;
             let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
             drop(t);
-            Some((mb.module.functions.append(f, NSpan::UNDEFINED), d.shader))
+            Some((mb.module.functions.append(f, NSpan::UNDEFINED), d.shader.shader()))
         }
         None => None,
     };
@@ -199,7 +180,7 @@ pub fn compile_shaded(
             t.block(&a.shader.body)?;
             let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
             drop(t);
-            Some((mb.module.functions.append(f, NSpan::UNDEFINED), a.shader))
+            Some((mb.module.functions.append(f, NSpan::UNDEFINED), a.shader.shader()))
         }
         None => None,
     };

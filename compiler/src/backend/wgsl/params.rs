@@ -3,14 +3,15 @@
 //! caller's [`ParamDefaults`]).
 
 use super::interface::Parameter;
-use crate::ir::{LocalId, LocalKind, Shader};
+use crate::ir::{LocalId, LocalKind};
+use crate::opt::Prepared;
 use crate::split::Stages;
 
 /// Computes the defaults of a shader's parameters that do not depend on the view, by name, for
 /// the interface: given the shader (a whole shader, or a host stage) and its string parameters'
 /// values. The host computes them, and the host is the interpreter, which this backend does not
 /// import: callers pass `backend::defaults::constant_defaults`.
-pub type ParamDefaults = dyn Fn(&Shader, &[(String, String)]) -> Vec<(String, Vec<f64>)>;
+pub type ParamDefaults = dyn Fn(&Prepared, &[(String, String)]) -> Vec<(String, Vec<f64>)>;
 
 /// The parameters of the shader the stages were split from (transfers left out).
 pub(super) fn surface_parameters(
@@ -24,7 +25,7 @@ pub(super) fn surface_parameters(
 
 /// The parameters of `shader` (a whole shader, or a host stage), but for those in `skip`.
 pub(super) fn parameters(
-    shader: &Shader,
+    shader: &Prepared,
     skip: &[LocalId],
     strings: &[(String, String)],
     defaults: &ParamDefaults,

@@ -1,21 +1,21 @@
 //! The backend's own checks: modules validate, and their WGSL re-parses with naga's front end.
 
+use crate::backend::binding::BoundLight;
 use crate::backend::defaults::constant_defaults;
-use crate::backend::wgsl::{BoundLight, compile};
+use crate::backend::wgsl::compile;
+use crate::opt::Prepared;
 use crate::syntax::preprocess::MemoryLoader;
 
 fn program(src: &str, light_src: Option<&str>) -> super::GpuProgram {
     let checked = crate::check_source("t.sl", src, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    let mut shader = checked.program.shaders[0].clone();
-    crate::opt::prepare(&mut shader);
+    let shader = crate::opt::Prepared::new(checked.program.shaders[0].clone());
     let stages = crate::split::split(&shader).unwrap();
     let lights_checked = light_src.map(|l| crate::check_source("l.sl", l, &MemoryLoader::default()));
-    let lights: Vec<BoundLight> = lights_checked
-        .iter()
-        .flat_map(|c| c.program.shaders.iter())
-        .map(|s| BoundLight { shader: s, strings: vec![], categories: vec![] })
-        .collect();
+    let prepared: Vec<Prepared> =
+        lights_checked.iter().flat_map(|c| c.program.shaders.iter().cloned()).map(Prepared::new).collect();
+    let lights: Vec<BoundLight> =
+        prepared.iter().map(|s| BoundLight { shader: s, strings: vec![], categories: vec![] }).collect();
     match compile(&stages, &lights, &[], &constant_defaults) {
         Ok(p) => p,
         Err(d) => panic!("{}", d.message),
@@ -48,12 +48,9 @@ fn every_example_shader_validates_and_reparses() {
     let loader = crate::syntax::preprocess::FsLoader { include_dirs: vec![] };
     let lights_src = std::fs::read_to_string(format!("{dir}/lights.sl")).unwrap();
     let lights_checked = crate::check_source("lights.sl", &lights_src, &loader);
-    let lights: Vec<BoundLight> = lights_checked
-        .program
-        .shaders
-        .iter()
-        .map(|s| BoundLight { shader: s, strings: vec![], categories: vec![] })
-        .collect();
+    let prepared: Vec<Prepared> = lights_checked.program.shaders.iter().cloned().map(Prepared::new).collect();
+    let lights: Vec<BoundLight> =
+        prepared.iter().map(|s| BoundLight { shader: s, strings: vec![], categories: vec![] }).collect();
     let mut failures = Vec::new();
     let mut count = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
@@ -61,8 +58,7 @@ fn every_example_shader_validates_and_reparses() {
         let text = std::fs::read_to_string(&path).unwrap();
         let checked = crate::check_source(&path.display().to_string(), &text, &loader);
         for s in checked.program.shaders.iter().filter(|s| s.kind != ShaderKind::Light) {
-            let mut s = s.clone();
-            crate::opt::prepare(&mut s);
+            let s = crate::opt::Prepared::new(s.clone());
             let stages = crate::split::split(&s).unwrap();
             count += 1;
             match compile(&stages, &lights, &[], &constant_defaults) {
@@ -91,8 +87,7 @@ fn kernels_validate_and_lay_out_their_records() {
         "surface k(float Kd = 0.5; uniform int n = 2) { Ci = color(Kd * s, Du(s), n); }",
         &MemoryLoader::default(),
     );
-    let mut shader = checked.program.shaders[0].clone();
-    crate::opt::prepare(&mut shader);
+    let shader = crate::opt::Prepared::new(checked.program.shaders[0].clone());
     let k = super::compile_kernel(&shader, &[], &[], &["Kd", "n", "s", "dx(s)", "du"], &["Ci"]).unwrap();
     assert_eq!(k.input_stride, 5);
     assert_eq!(k.output_stride, 3);
@@ -136,8 +131,7 @@ fn a_constant_table_is_one_uniform_member_shared_by_its_calls() {
 #[test]
 fn a_kernels_constant_table_is_one_initialized_variable_shared_by_its_calls() {
     let checked = crate::check_source("k.sl", TABLE_SHADER, &MemoryLoader::default());
-    let mut shader = checked.program.shaders[0].clone();
-    crate::opt::prepare(&mut shader);
+    let shader = crate::opt::Prepared::new(checked.program.shaders[0].clone());
     let k = super::compile_kernel(&shader, &[], &[], &["s", "t"], &["Ci"]).unwrap();
     assert_eq!(k.uniform_size, 0, "a kernel binds no uniform block for its tables");
     let module = &k.module;
@@ -231,11 +225,12 @@ fn a_stanford_light_reads_its_position_from_the_uniform_block() {
 #[test]
 fn a_stanford_light_reading_pobj_needs_a_stanford_surface() {
     let checked = crate::check_source("t.sl", "surface m() { Ci = 1; }", &MemoryLoader::default());
-    let stages = crate::split::split(&checked.program.shaders[0]).unwrap();
+    let stages = crate::split::split(&Prepared::new(checked.program.shaders[0].clone())).unwrap();
     let light_src = "light shader float4 l(float4 c) { return c * Pobj[0] / Sdist; }";
     let light = crate::check_source("l.sl", light_src, &MemoryLoader::default());
     assert!(!light.has_errors(), "{:?}", light.diagnostics);
-    let bound = [BoundLight { shader: &light.program.shaders[0], strings: vec![], categories: vec![] }];
+    let light = Prepared::new(light.program.shaders[0].clone());
+    let bound = [BoundLight { shader: &light, strings: vec![], categories: vec![] }];
     let error = compile(&stages, &bound, &[], &constant_defaults).expect_err("refused");
     assert_eq!(error.code, crate::diag::Code::NotExecutable);
     assert!(error.message.contains("`Pobj`") && error.message.contains("`m`"), "{}", error.message);

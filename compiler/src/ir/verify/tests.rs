@@ -31,7 +31,7 @@ fn fixed_values(shader: &Shader) -> Vec<Fixed> {
 }
 
 /// Every pass after the semantic stage, each result verified: binding (without and with fixed
-/// values, reading back no outputs), the steps of `opt::prepare`, and both splits.
+/// values, reading back no outputs), the steps of `opt::Prepared::new`, and both splits.
 fn through_every_pass(original: &Shader, file: &str) {
     ok(original, Pass::Rates, file);
     let mut bound = vec![bind::specialize(original, &[], &[], Consumed::All).shader];
@@ -53,6 +53,7 @@ fn through_every_pass(original: &Shader, file: &str) {
         crate::opt::shadow::expand(&mut s);
         ok(&s, Pass::Shadows, file);
         ok(&s, Pass::Prepare, file);
+        let s = crate::opt::Prepared::assume_prepared(s);
         for stages in [split::split(&s), split::split_folding_host(&s)] {
             match stages {
                 Ok(stages) => {
@@ -394,8 +395,7 @@ fn a_derivative_left_after_prepare_is_refused() {
     let message = refused(&shader, Pass::Prepare);
     assert!(message.contains("still calls") && message.contains("Du("), "{message}");
     assert!(message.contains("filterwidth"), "{message}");
-    let mut prepared = shader.clone();
-    crate::opt::prepare(&mut prepared);
+    let prepared = crate::opt::Prepared::new(shader.clone());
     ok(&prepared, Pass::Prepare, "d");
 }
 
@@ -404,15 +404,13 @@ fn a_texture_lookup_left_after_prepare_is_refused() {
     let shader = checked("surface t1(string map = \"a.png\") {\n    Ci = color texture(map, s, t);\n}\n");
     let message = refused(&shader, Pass::Textures);
     assert!(message.contains("texture"), "{message}");
-    let mut prepared = shader.clone();
-    crate::opt::prepare(&mut prepared);
+    let prepared = crate::opt::Prepared::new(shader.clone());
     ok(&prepared, Pass::Prepare, "t1");
 }
 
 #[test]
 fn a_stage_reading_a_later_stage_is_refused() {
-    let mut shader = checked(SIMPLE);
-    crate::opt::prepare(&mut shader);
+    let shader = crate::opt::Prepared::new(checked(SIMPLE));
     let mut stages = split::split(&shader).expect("splits");
     verify_stages(&stages).expect("the split is valid");
     // The host computes `Ci` now, which reads `s`, a per-vertex value.
@@ -427,9 +425,8 @@ fn a_stage_reading_a_later_stage_is_refused() {
 #[test]
 fn a_transfer_that_is_not_a_parameter_is_refused() {
     // `Kd * 2` is per draw and crosses from the host to the fragment stage.
-    let mut shader =
-        checked("surface tr(float Kd = 0.5) {\n    float k = Kd * 2;\n    Ci = color (k * s);\n}\n");
-    crate::opt::prepare(&mut shader);
+    let shader = checked("surface tr(float Kd = 0.5) {\n    float k = Kd * 2;\n    Ci = color (k * s);\n}\n");
+    let shader = crate::opt::Prepared::new(shader);
     let mut stages = split::split(&shader).expect("splits");
     verify_stages(&stages).expect("the split is valid");
     let t = stages.transfers.first().expect("a transfer").local;
@@ -473,7 +470,7 @@ fn a_light_value_outside_illuminance_is_refused() {
 fn a_pass_that_breaks_the_ir_panics_in_debug_builds() {
     let mut shader = checked(SIMPLE);
     shader.body.push(Stmt::Break(1));
-    crate::opt::prepare(&mut shader);
+    crate::opt::Prepared::new(shader);
 }
 
 #[test]

@@ -51,7 +51,7 @@ use rules::Diff;
 /// derivatives computed by the chain rule, adding the shadow locals, seeds and derivative stores
 /// that needs. Existing expression ids stay valid: consumers are overwritten in place, new
 /// expressions and locals are appended. A shader without consumers is left as it is.
-pub fn differentiate(shader: &mut Shader) {
+pub(crate) fn differentiate(shader: &mut Shader) {
     // Also what makes the pass idempotent: its output has no consumers, and its arena order is no
     // longer what the analysis walks.
     let has_consumers = shader

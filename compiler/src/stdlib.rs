@@ -25,8 +25,23 @@ pub fn source(name: &str) -> Option<&'static str> {
 
 /// The built-in functions whose implementations are written in the language, in
 /// `compiler/stdlib/builtins.sl` (as `__NAME_RESULT` overloaded by parameter types).
-pub const LIBRARY_BUILTINS: &[&str] =
-    &["noise", "snoise", "pnoise", "cellnoise", "diffuse", "specular", "phong", "specularbrdf", "ctransform"];
+pub const LIBRARY_BUILTINS: &[&str] = &[
+    "noise",
+    "snoise",
+    "pnoise",
+    "cellnoise",
+    "diffuse",
+    "specular",
+    "phong",
+    "specularbrdf",
+    "ctransform",
+    "ptlined",
+    "rotate",
+    "translate",
+    "scale",
+    "determinant",
+    "fresnel",
+];
 
 /// The colour spaces (docs/builtins.md), converted by `compiler/stdlib/builtins.sl` for
 /// `ctransform` and the casts `color "space" (a, b, c)`.

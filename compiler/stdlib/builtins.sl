@@ -1,6 +1,9 @@
 // The built-in functions written in the language: RenderMan's `noise`, `snoise`, `pnoise` and
-// `cellnoise` in every overload of docs/builtins.md, and the light sums `diffuse`, `specular`,
-// `phong` and the one-light `specularbrdf`. The semantic stage inlines `__NAME_RESULT`
+// `cellnoise` in every overload of docs/builtins.md, the light sums `diffuse`, `specular`,
+// `phong` and the one-light `specularbrdf`, `ctransform` and the colour casts, and the geometry
+// and matrix built-ins `ptlined`, `rotate`, `translate`, `scale`, `determinant` and `fresnel`
+// (`__fresnel_void`: a built-in's `output` arguments are written back as a user function's are).
+// The semantic stage inlines `__NAME_RESULT`
 // (overloaded by parameter types) where a shader calls built-in NAME with result type RESULT, so
 // both backends run this code and nothing else. This file is not for `#include`; its functions
 // see only each other and what it includes, never the calling file's functions.
@@ -317,4 +320,130 @@ color __ctransform_color(string from, to; color c)
 color __ctransform_color(string to; color c)
 {
     return __ctransform_color("rgb", to, c);
+}
+
+// Geometry and matrices: `ptlined`, `rotate` (of a point and of a matrix), `translate`, `scale`,
+// `determinant` and `fresnel`. Each is written operation for operation as the interpreter computed
+// it natively before it moved here, so that its bits stay the same (docs/numerics.md: exact on
+// both backends): products and sums in the order written, sums left to right. `dot` is the
+// built-in, never the `.` operator (which the GPU backend hands to WGSL's `dot`, whose order of
+// summation is the driver's). Matrices are row by row (`m[i][j]`, row i, column j) in RenderMan's
+// row-vector convention, points transformed as `(p, 1) m`.
+
+// The distance from q to the segment from a to b: to the nearest point a + t (b - a), with t
+// clamped to [0, 1] (a point segment, whose t is 0/0 = NaN, clamps to a).
+float __ptlined_float(point a, b, q)
+{
+    vector d = b - a, w = q - a;
+    float t = clamp(dot(w, d) / dot(d, d), 0, 1);
+    return length(w - d * t);
+}
+
+// The 3x3 rotation by `angle` radians about `axis` (normalized here), for row vectors, as its three
+// columns: v R = v cos + (k x v) sin + k (k . v)(1 - cos) (Rodrigues), the matrix of RiRotate,
+// which about +z turns +x towards +y. Entry (i, j) is ((1 - cos) k_i) k_j, plus cos on the
+// diagonal, plus sin k_m at (0, 1), (1, 2) and (2, 0) and minus it at (1, 0), (2, 1) and (0, 2),
+// m being the third index.
+void _patina_rotation(float angle; vector axis; output vector c0, c1, c2)
+{
+    vector k = normalize(axis);
+    float c = cos(angle), s = sin(angle);
+    float t = 1 - c;
+    float k0 = k[0], k1 = k[1], k2 = k[2];
+    c0 = vector(t * k0 * k0 + c, t * k1 * k0 - s * k2, t * k2 * k0 + s * k1);
+    c1 = vector(t * k0 * k1 + s * k2, t * k1 * k1 + c, t * k2 * k1 - s * k0);
+    c2 = vector(t * k0 * k2 - s * k1, t * k1 * k2 + s * k0, t * k2 * k2 + c);
+}
+
+// The point q turned about the axis through p0 and p1: (q - p0) R + p0.
+point __rotate_point(point q; float angle; point p0, p1)
+{
+    vector c0, c1, c2;
+    _patina_rotation(angle, p1 - p0, c0, c1, c2);
+    vector v = q - p0;
+    return point(dot(v, c0), dot(v, c1), dot(v, c2)) + p0;
+}
+
+// Row i of m without its last column, times the rotation's columns; the last column unchanged.
+#define PATINA_ROTATED_ROW(m, i) \
+    dot(vector((m)[i][0], (m)[i][1], (m)[i][2]), c0), \
+    dot(vector((m)[i][0], (m)[i][1], (m)[i][2]), c1), \
+    dot(vector((m)[i][0], (m)[i][1], (m)[i][2]), c2), (m)[i][3]
+
+// The matrix builders postconcatenate (RI 3.2, section 15.4): the result is m T, so that
+// transform(translate(m, t), p) = transform(m, p) + t.
+matrix __rotate_matrix(matrix m; float angle; vector axis)
+{
+    vector c0, c1, c2;
+    _patina_rotation(angle, axis, c0, c1, c2);
+    return matrix(PATINA_ROTATED_ROW(m, 0), PATINA_ROTATED_ROW(m, 1), PATINA_ROTATED_ROW(m, 2),
+                  PATINA_ROTATED_ROW(m, 3));
+}
+
+// (m T)[i][j] = m[i][j] + m[i][3] t[j], the last column unchanged.
+#define PATINA_TRANSLATED_ROW(m, i, t) \
+    (m)[i][0] + (m)[i][3] * (t)[0], (m)[i][1] + (m)[i][3] * (t)[1], \
+    (m)[i][2] + (m)[i][3] * (t)[2], (m)[i][3]
+
+matrix __translate_matrix(matrix m; vector t)
+{
+    return matrix(PATINA_TRANSLATED_ROW(m, 0, t), PATINA_TRANSLATED_ROW(m, 1, t),
+                  PATINA_TRANSLATED_ROW(m, 2, t), PATINA_TRANSLATED_ROW(m, 3, t));
+}
+
+// (m S)[i][j] = m[i][j] s[j], the last column unchanged.
+#define PATINA_SCALED_ROW(m, i, s) \
+    (m)[i][0] * (s)[0], (m)[i][1] * (s)[1], (m)[i][2] * (s)[2], (m)[i][3]
+
+matrix __scale_matrix(matrix m; point s)
+{
+    return matrix(PATINA_SCALED_ROW(m, 0, s), PATINA_SCALED_ROW(m, 1, s), PATINA_SCALED_ROW(m, 2, s),
+                  PATINA_SCALED_ROW(m, 3, s));
+}
+
+// The determinant of the 3x3 matrix of rows a, b, c, by Laplace expansion along the first row:
+// each 2x2 minor as x_0 y_1 - x_1 y_0, the signed terms summed left to right (the order in which
+// the backends' `invert` still computes its minors).
+float _patina_det3(vector a, b, c)
+{
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+           + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+// The minor of m's first row and column j: rows 1 to 3, the columns x < y < z other than j.
+#define PATINA_MINOR(m, x, y, z) \
+    _patina_det3(vector((m)[1][x], (m)[1][y], (m)[1][z]), vector((m)[2][x], (m)[2][y], (m)[2][z]), \
+                 vector((m)[3][x], (m)[3][y], (m)[3][z]))
+
+// By Laplace expansion along the first row, as `_patina_det3`.
+float __determinant_float(matrix m)
+{
+    return m[0][0] * PATINA_MINOR(m, 1, 2, 3) - m[0][1] * PATINA_MINOR(m, 0, 2, 3)
+           + m[0][2] * PATINA_MINOR(m, 0, 1, 3) - m[0][3] * PATINA_MINOR(m, 0, 1, 2);
+}
+
+// The Fresnel reflectance of a dielectric for unpolarized light, Kr = (rs^2 + rp^2) / 2, with
+// `eta` the ratio of the index on the side of I to the index of the side entered (as for
+// `refract`), and Kt = 1 - Kr; under total internal reflection Kr = 1 and Kt = 0. The angle comes
+// from I and N normalized, its cosine taken as positive whichever way N faces; Snell's law gives
+// sin_t^2 = eta^2 (1 - cos_i^2), and rs = (eta cos_i - cos_t) / (eta cos_i + cos_t),
+// rp = (cos_i - eta cos_t) / (cos_i + eta cos_t).
+void __fresnel_void(vector I; normal N; float eta; output float Kr, Kt)
+{
+    float cos_i = abs(dot(normalize(I), normalize(N)));
+    float sin_t2 = eta * eta * (1 - cos_i * cos_i);
+    float cos_t = sqrt(max(1 - sin_t2, 0));
+    float eta_cos_i = eta * cos_i, eta_cos_t = eta * cos_t;
+    float rs = (eta_cos_i - cos_t) / (eta_cos_i + cos_t);
+    float rp = (cos_i - eta_cos_t) / (cos_i + eta_cos_t);
+    Kr = sin_t2 > 1 ? 1 : (rs * rs + rp * rp) * 0.5;
+    Kt = 1 - Kr;
+}
+
+// With the reflected and refracted directions: reflect(I, N) and refract(I, N, eta).
+void __fresnel_void(vector I; normal N; float eta; output float Kr, Kt; output vector R, T)
+{
+    __fresnel_void(I, N, eta, Kr, Kt);
+    R = reflect(I, N);
+    T = refract(I, N, eta);
 }

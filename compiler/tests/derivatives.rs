@@ -124,6 +124,27 @@ fn vectors() {
 }
 
 #[test]
+fn geometry_written_in_the_language() {
+    // Library code (compiler/stdlib/builtins.sl), differentiated through its body: every argument
+    // of the rotations (angle and axis too) and fresnel's outputs.
+    check("x = ptlined(point(0, 0, 0), point(1, v, 0.5), point(u, 1, v));");
+    check(
+        "point q = rotate(point(u, 1, 2), v * 3, point(0, u, 0), point(1, 1, v + 1));
+         x = xcomp(q) + 2 * ycomp(q) - zcomp(q);",
+    );
+    check(
+        "matrix m = rotate(translate(scale(matrix 1, point(1 + u, 2, v + 1)), vector(v, u, 1)), u * 2,
+                           vector(1, v, u));
+         x = determinant(m) + comp(m, 0, 1) + comp(m, 2, 0) * comp(m, 3, 1);",
+    );
+    check(
+        "float kr, kt; vector r, tr;
+         fresnel(vector(u - 0.5, v - 0.5, -1), normal(0, 0.2, 1), 0.7, kr, kt, r, tr);
+         x = kr + 2 * kt + xcomp(r) * ycomp(tr);",
+    );
+}
+
+#[test]
 fn control_flow() {
     // A loop accumulating terms, with a varying trip count.
     check("float i; x = 0; for (i = 1; i < 3 + 4 * u; i += 1) { x += sin(i * u) / i; }");

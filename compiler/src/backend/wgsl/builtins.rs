@@ -4,9 +4,10 @@
 //! the interpreter fixes an order of operations that WGSL leaves open (`dot`, `length`, matrix
 //! products, `smoothstep`, `inversesqrt`) the sequence is written out, so that both backends give
 //! the same bits. Transcendentals (`sin`, `exp`, `pow`, ...) are WGSL's, within its accuracy
-//! rules. The composite families live beside this file: `geometry` (spaces, `transform`,
-//! `fresnel`), `matrices`, `curves` (`spline`) and `strings` (`concat`, `match`); colour spaces
-//! are the library's (`compiler/stdlib/builtins.sl`).
+//! rules. The composite families live beside this file: `geometry` (spaces, `transform`),
+//! `matrices`, `curves` (`spline`) and `strings` (`concat`, `match`); colour spaces, `fresnel`,
+//! `ptlined`, `rotate`, `translate`, `scale` and `determinant` are the library's
+//! (`compiler/stdlib/builtins.sl`).
 
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
 
@@ -51,7 +52,7 @@ impl Translator<'_> {
         let wide = |this: &mut Self, i: usize| {
             if types[i].base.components() == 1 && n > 1 && !is_int { this.splat(vals[i], n) } else { vals[i] }
         };
-        // The value of a built-in without one (`fresnel`, `setcomp`, ...): never read.
+        // The value of a built-in without one (`setcomp`, `printf`, ...): never read.
         let void = |this: &mut Self| this.float(0.0);
         Ok(match b.name {
             "radians" => self.scale(v(0), std::f64::consts::PI / 180.0),
@@ -243,10 +244,6 @@ impl Translator<'_> {
             }
             "reflect" => self.reflect(v(0), v(1)),
             "refract" => self.refract(v(0), v(1), v(2)),
-            "fresnel" => {
-                self.fresnel(args, &vals)?;
-                void(self)
-            }
             "ambient" => self.ambient()?,
             "lightsource" => self.lightsource(args, span)?,
             "surface" => self.surface_message(args, span)?,
@@ -263,16 +260,6 @@ impl Translator<'_> {
                 let inv = self.invert_entries(&m, k as usize);
                 self.matrix(&inv, k)
             }
-            "determinant" => {
-                let m = self.entries(v(0), 4);
-                let all: Vec<usize> = (0..4).collect();
-                self.minor(&m, 4, &all, &all)
-            }
-            "translate" => self.translate_or_scale(v(0), v(1), true),
-            "scale" => self.translate_or_scale(v(0), v(1), false),
-            "rotate" if ret.base == Base::Matrix4 => self.rotate_matrix(v(0), v(1), v(2)),
-            "rotate" => self.rotate_point(v(0), v(1), v(2), v(3)),
-            "ptlined" => self.ptlined(v(0), v(1), v(2)),
             "depth" => self.depth(v(0)),
             "__colour_space" => {
                 let Some(name) = self.fold_string(args[0]) else {
@@ -310,14 +297,12 @@ impl Translator<'_> {
                     ),
                 ));
             }
-            "noise" | "snoise" | "pnoise" | "cellnoise" | "diffuse" | "specular" | "phong"
-            | "specularbrdf" => {
+            name if crate::stdlib::is_library_builtin(name) => {
                 return Err(super::internal(
                     span,
                     format!(
-                        "`{}` reached the WGSL backend as a built-in; the semantic stage inlines its \
-                         implementation from compiler/stdlib/builtins.sl",
-                        b.name
+                        "`{name}` reached the WGSL backend as a built-in; the semantic stage inlines its \
+                         implementation from compiler/stdlib/builtins.sl"
                     ),
                 ));
             }

@@ -1,7 +1,7 @@
 //! Coordinate systems and the geometric built-ins: values given in a named space, converted to
-//! "current" with the matrices the uniform block carries, `transform` and its family, `fresnel`,
-//! `refract`, `ptlined` and `depth`, by the interpreter's rules (`backend/cpu/lower/geometry.rs`),
-//! operation for operation (see `matrices`).
+//! "current" with the matrices the uniform block carries, `transform` and its family, `refract`
+//! and `depth`, by the interpreter's rules (`backend/cpu/lower/geometry.rs`), operation for
+//! operation (see `matrices`).
 
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, SwizzleComponent as C, VectorSize};
 
@@ -222,48 +222,6 @@ impl Translator<'_> {
         self.vector(&out)
     }
 
-    /// `fresnel(I, N, eta, Kr, Kt [, R, T])`: the interpreter's unpolarized dielectric
-    /// reflectance (see `backend/cpu/lower/geometry.rs`), stored into the output arguments.
-    pub(super) fn fresnel(&mut self, args: &[ExprId], vals: &[Value]) -> Result<(), Diagnostic> {
-        let (i, n, eta) = (self.parts(vals[0], 3), self.parts(vals[1], 3), vals[2]);
-        let (zero, one, half) = (self.float(0.0), self.float(1.0), self.float(0.5));
-        let ni = self.normalize_parts(&i);
-        let nn = self.normalize_parts(&n);
-        let cos_i = self.dot_parts(&ni, &nn);
-        let cos_i = self.math1(M::Abs, cos_i);
-        let c2 = self.mul(cos_i, cos_i);
-        let sin_i2 = self.sub(one, c2);
-        let eta2 = self.mul(eta, eta);
-        let sin_t2 = self.mul(eta2, sin_i2);
-        let total = self.binary(Op::Greater, sin_t2, one);
-        let cos_t2 = self.sub(one, sin_t2);
-        let cos_t2 = self.math2(M::Max, cos_t2, zero);
-        let cos_t = self.math1(M::Sqrt, cos_t2);
-        let ratio = |this: &mut Self, a: Value, b: Value| {
-            let num = this.sub(a, b);
-            let den = this.add(a, b);
-            let r = this.div(num, den);
-            this.mul(r, r)
-        };
-        let eci = self.mul(eta, cos_i);
-        let rs2 = ratio(self, eci, cos_t);
-        let ect = self.mul(eta, cos_t);
-        let rp2 = ratio(self, cos_i, ect);
-        let sum = self.add(rs2, rp2);
-        let kr = self.mul(sum, half);
-        let kr = self.pick(total, one, kr);
-        let kt = self.sub(one, kr);
-        self.write_output(args[3], kr);
-        self.write_output(args[4], kt);
-        if args.len() == 7 {
-            let r = self.reflect(vals[0], vals[1]);
-            let t = self.refract(vals[0], vals[1], eta);
-            self.write_output(args[5], r);
-            self.write_output(args[6], t);
-        }
-        Ok(())
-    }
-
     /// Stores into the variable passed as an `output` argument (anything else is not stored, as
     /// in the interpreter).
     pub(super) fn write_output(&mut self, arg: ExprId, v: Value) {
@@ -274,21 +232,6 @@ impl Translator<'_> {
         };
         let p = self.pointer(var);
         self.store(p, v);
-    }
-
-    /// The distance from `q` to the segment from `a` to `b` (t clamped to [0, 1]).
-    pub(super) fn ptlined(&mut self, a: Value, b: Value, q: Value) -> Value {
-        let (a, b, q) = (self.parts(a, 3), self.parts(b, 3), self.parts(q, 3));
-        let d = self.zip_parts(Op::Subtract, &b, &a);
-        let w = self.zip_parts(Op::Subtract, &q, &a);
-        let along = self.dot_parts(&w, &d);
-        let dd = self.dot_parts(&d, &d);
-        let t = self.div(along, dd);
-        let (zero, one) = (self.float(0.0), self.float(1.0));
-        let t = self.clamp_to(t, zero, one);
-        let td: Vec<Value> = d.iter().map(|x| self.mul(*x, t)).collect();
-        let off = self.zip_parts(Op::Subtract, &w, &td);
-        self.length_parts(&off)
     }
 
     /// `depth(p)`: `(z - near) / (far - near)`, near and far from the [`CLIP_INPUT`] uniform

@@ -1,7 +1,7 @@
 //! Matrices and the scalar arithmetic the composite built-ins are written in.
 //!
 //! The interpreter scalarizes every value and defines each composite built-in (`transform`,
-//! `invert`, `rotate`, the colour spaces, `spline`, ...) as a fixed sequence of scalar operations.
+//! `invert`, `spline`, ...) as a fixed sequence of scalar operations.
 //! WGSL leaves the order of a matrix product's or a `dot`'s sums to the implementation, so the
 //! built-ins here take their operands apart into components and repeat the interpreter's
 //! sequence operation for operation: with IEEE `+ - * /` the results are then the same bits.
@@ -153,12 +153,6 @@ impl Translator<'_> {
         self.math1(M::Sqrt, d)
     }
 
-    /// `v / length(v)` of components.
-    pub(super) fn normalize_parts(&mut self, v: &[Value]) -> Vec<Value> {
-        let len = self.length_parts(v);
-        v.iter().map(|x| self.div(*x, len)).collect()
-    }
-
     /// Componentwise `a op b`.
     pub(super) fn zip_parts(&mut self, op: Op, a: &[Value], b: &[Value]) -> Vec<Value> {
         a.iter().zip(b).map(|(x, y)| self.binary(op, *x, *y)).collect()
@@ -274,86 +268,6 @@ impl Translator<'_> {
                 sum.unwrap_or_else(|| self.float(1.0))
             }
         }
-    }
-
-    /// The 3x3 rotation by `angle` radians about `axis` (normalized here), row by row, for row
-    /// vectors (Rodrigues; the interpreter's `rotation`, operation for operation).
-    pub(super) fn rotation(&mut self, angle: Value, axis: &[Value]) -> [Value; 9] {
-        let k = self.normalize_parts(axis);
-        let c = self.math1(M::Cos, angle);
-        let s = self.math1(M::Sin, angle);
-        let one = self.float(1.0);
-        let t = self.sub(one, c);
-        let mut r = [c; 9];
-        for i in 0..3 {
-            for j in 0..3 {
-                let ki = self.mul(t, k[i]);
-                let outer = self.mul(ki, k[j]);
-                r[i * 3 + j] = if i == j {
-                    self.add(outer, c)
-                } else {
-                    let m = 3 - i - j;
-                    let sk = self.mul(s, k[m]);
-                    if (i + 1) % 3 == j { self.add(outer, sk) } else { self.sub(outer, sk) }
-                };
-            }
-        }
-        r
-    }
-
-    /// `translate(m, t)` and `scale(m, s)`, postconcatenated: `(m T)[i][j] = m[i][j] + m[i][3]
-    /// t[j]` and `(m S)[i][j] = m[i][j] s[j]`, the last column unchanged.
-    pub(super) fn translate_or_scale(&mut self, m: Value, v: Value, translate: bool) -> Value {
-        let m = self.entries(m, 4);
-        let v = self.parts(v, 3);
-        let out: Vec<Value> = (0..16)
-            .map(|k| {
-                let (i, j) = (k / 4, k % 4);
-                if j == 3 {
-                    m[k]
-                } else if translate {
-                    let shift = self.mul(m[i * 4 + 3], v[j]);
-                    self.add(m[k], shift)
-                } else {
-                    self.mul(m[k], v[j])
-                }
-            })
-            .collect();
-        self.matrix(&out, 4)
-    }
-
-    /// `rotate(m, angle, axis)`, postconcatenated: each row's first three entries times the
-    /// rotation, the last column unchanged.
-    pub(super) fn rotate_matrix(&mut self, m: Value, angle: Value, axis: Value) -> Value {
-        let m = self.entries(m, 4);
-        let axis = self.parts(axis, 3);
-        let r = self.rotation(angle, &axis);
-        let out: Vec<Value> = (0..16)
-            .map(|k| {
-                let (i, j) = (k / 4, k % 4);
-                if j == 3 {
-                    return m[k];
-                }
-                let row = [m[i * 4], m[i * 4 + 1], m[i * 4 + 2]];
-                self.dot_parts(&row, &[r[j], r[3 + j], r[6 + j]])
-            })
-            .collect();
-        self.matrix(&out, 4)
-    }
-
-    /// `rotate(q, angle, p0, p1)`: the point about the axis through p0 and p1, `(q - p0) R + p0`.
-    pub(super) fn rotate_point(&mut self, q: Value, angle: Value, p0: Value, p1: Value) -> Value {
-        let (q, p0, p1) = (self.parts(q, 3), self.parts(p0, 3), self.parts(p1, 3));
-        let axis = self.zip_parts(Op::Subtract, &p1, &p0);
-        let r = self.rotation(angle, &axis);
-        let v = self.zip_parts(Op::Subtract, &q, &p0);
-        let out: Vec<Value> = (0..3)
-            .map(|j| {
-                let turned = self.dot_parts(&v, &[r[j], r[3 + j], r[6 + j]]);
-                self.add(turned, p0[j])
-            })
-            .collect();
-        self.vector(&out)
     }
 
     /// `comp(m, row, col)`: the element, row and column converted to integers and clamped to

@@ -17,11 +17,9 @@ pub(super) fn operands(b: &Builtin, args: &[ExprId]) -> Vec<ExprId> {
     match b.name {
         "radians" | "degrees" | "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "pow" | "exp" | "sqrt"
         | "inversesqrt" | "log" | "mod" | "abs" | "min" | "max" | "clamp" | "mix" | "smoothstep"
-        | "length" | "normalize" | "distance" | "ptlined" | "reflect" | "refract" | "depth" | "rgb"
-        | "clamp01" | "integrate" | "dot" | "cross" | "transpose" | "affine" | "determinant" | "invert"
-        | "translate" | "scale" => args.to_vec(),
-        "rotate" if b.ret.base == Base::Point => args.to_vec(),
-        "xcomp" | "ycomp" | "zcomp" | "comp" | "faceforward" | "rotate" => vec![args[0]],
+        | "length" | "normalize" | "distance" | "reflect" | "refract" | "depth" | "rgb" | "clamp01"
+        | "integrate" | "dot" | "cross" | "transpose" | "affine" | "invert" => args.to_vec(),
+        "xcomp" | "ycomp" | "zcomp" | "comp" | "faceforward" => vec![args[0]],
         "transform" | "vtransform" | "ntransform" => {
             vec![*args.last().expect("an argument")]
         }
@@ -38,7 +36,7 @@ pub(super) fn is_source(b: &Builtin) -> bool {
 
 /// The inputs that the derivative of a built-in's output arguments depends on: the value
 /// `setxcomp`, `setycomp`, `setzcomp` and `setcomp` write (their last argument). Other outputs
-/// (`fresnel`'s) get derivative 0.
+/// (`lightsource`'s and `surface`'s, values of another shader) get derivative 0.
 pub(super) fn output_inputs(b: &Builtin, args: &[ExprId]) -> Vec<ExprId> {
     if is_component_setter(b) { vec![*args.last().expect("a value")] } else { Vec::new() }
 }

@@ -1,7 +1,6 @@
-//! The chain rule for the geometric built-ins: lengths and directions, the closest-point and
-//! rotation functions, coordinate transforms and matrices.
-
-use std::f64::consts::PI;
+//! The chain rule for the geometric built-ins: lengths and directions, reflection, coordinate
+//! transforms and matrices. (`ptlined`, `rotate`, `translate`, `scale` and `determinant` are
+//! library code, `compiler/stdlib/builtins.sl`, differentiated through it.)
 
 use super::rules::Diff;
 use crate::ir::types::{Base, Type};
@@ -59,8 +58,6 @@ impl Diff<'_> {
                 let nonzero = self.shared(e, 1, |s| s.positive(e));
                 Some(self.guard(nonzero, q))
             }
-            ("ptlined", _) => self.ptlined(e, a, axis),
-            ("rotate", 4) => self.rotate_point(e, a, axis),
             ("faceforward", _) => {
                 // The result is N or -N: the derivative of N with the sign that was chosen.
                 let dn = self.d(a[0], axis)?;
@@ -94,149 +91,8 @@ impl Diff<'_> {
                 let product = self.mul(left, e);
                 Some(self.b.neg(product))
             }
-            ("determinant", _) => {
-                // Jacobi's formula: d det A = det A · trace(A⁻¹ dA); 0 where A is singular.
-                let da = self.d(a[0], axis)?;
-                let inverse = self.shared(e, 0, |s| s.b.call("invert", vec![a[0]]));
-                let product = self.mul(inverse, da);
-                let mut trace = None;
-                for i in 0..4 {
-                    let row = self.b.index(product, i);
-                    let entry = self.b.index(row, i);
-                    trace = self.add(trace, Some(entry));
-                }
-                let value = self.mul(e, trace.expect("four terms"));
-                let regular = self.shared(e, 1, |s| {
-                    let zero = s.lit(0.0);
-                    s.op(BinaryOp::Ne, e, zero)
-                });
-                Some(self.guard(regular, value))
-            }
-            ("translate" | "scale", _) => self.translate_scale(b.name, a, axis),
-            ("rotate", _) => {
-                // Linear in the matrix; the angle's and axis's terms are left out.
-                let dm = self.d(a[0], axis)?;
-                Some(self.b.call("rotate", vec![dm, a[1], a[2]]))
-            }
             _ => None,
         }
-    }
-
-    /// ptlined(p0, p1, q) = |q - c| with c the closest point of the segment, c = p0 + t (p1 - p0).
-    /// Where t is inside (0, 1), q - c is perpendicular to the segment, so t's own change drops
-    /// out; where it is clamped it does not change.
-    fn ptlined(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
-        let (d0, d1, dq) = (self.d(a[0], axis), self.d(a[1], axis), self.d(a[2], axis));
-        let t = self.shared(e, 0, |s| {
-            let (p0, p1, q) = (s.prim(a[0]), s.prim(a[1]), s.prim(a[2]));
-            let dir = s.op(BinaryOp::Sub, p1, p0);
-            let len2 = s.op(BinaryOp::Dot, dir, dir);
-            let rel = s.op(BinaryOp::Sub, q, p0);
-            let along = s.op(BinaryOp::Dot, rel, dir);
-            let ratio = s.div(along, len2);
-            let (zero, one) = (s.lit(0.0), s.lit(1.0));
-            let clamped = s.b.call("clamp", vec![ratio, zero, one]);
-            let long = s.positive(len2);
-            s.guard(long, clamped)
-        });
-        let offset = self.shared(e, 1, |s| {
-            let (p0, p1, q) = (s.prim(a[0]), s.prim(a[1]), s.prim(a[2]));
-            let dir = s.op(BinaryOp::Sub, p1, p0);
-            let along = s.mul(t, dir);
-            let closest = s.op(BinaryOp::Add, p0, along);
-            s.op(BinaryOp::Sub, q, closest)
-        });
-        let moved = self.sub(dq, d0);
-        let slide = self.sub(d1, d0).map(|d| self.mul(t, d));
-        let relative = self.sub(moved, slide)?;
-        let dot = self.op(BinaryOp::Dot, offset, relative);
-        let q = self.div(dot, e);
-        let nonzero = self.shared(e, 2, |s| s.positive(e));
-        Some(self.guard(nonzero, q))
-    }
-
-    /// rotate(q, angle, p0, p1) = p0 + R (q - p0), R the rotation about the axis p1 - p0, of
-    /// direction k. Written with the built-in itself, so that it holds whichever way the rotation
-    /// turns: with v = q - p0 and v∥ = k (k.v),
-    /// - q and p0 move the point rotated: R (dq - dp0) + dp0 (R about the origin);
-    /// - the angle: d/dθ R v = R_{θ+π/2} v - v∥;
-    /// - the axis's direction (dk = the part of d(p1 - p0) across k, over |p1 - p0|): with
-    ///   S(w) = R w - k (k.w) - cos θ (w - k (k.w)) = ± sin θ (k ^ w), the rotation's own sine
-    ///   part, dR v = (1 - cos θ) (dk (k.v) + k (dk.v)) - (k.v) S(dk) - k (dk . S(v)).
-    fn rotate_point(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
-        let (q, angle, p0, p1) = (a[0], a[1], a[2], a[3]);
-        let (dq, dangle) = (self.d(q, axis), self.d(angle, axis));
-        let (dp0, dp1) = (self.d(p0, axis), self.d(p1, axis));
-        let vector = Type::of(Base::Vector);
-        let k = self.shared(e, 0, |s| {
-            let dir = s.op(BinaryOp::Sub, p1, p0);
-            s.b.call("normalize", vec![dir])
-        });
-        let v = self.shared(e, 1, |s| s.op(BinaryOp::Sub, q, p0));
-        let kv = self.shared(e, 2, |s| s.op(BinaryOp::Dot, k, v));
-        let moved = self.sub(dq, dp0).map(|w| self.rotated(e, a, w));
-        let turning = dangle.map(|da| {
-            let rate = self.shared(e, 3, |s| {
-                let quarter = s.lit(PI / 2.0);
-                let ahead = s.op(BinaryOp::Add, angle, quarter);
-                let turned = s.b.call("rotate", vec![q, ahead, p0, p1]);
-                let from_p0 = s.op(BinaryOp::Sub, turned, p0);
-                let parallel = s.mul(k, kv);
-                s.op(BinaryOp::Sub, from_p0, parallel)
-            });
-            self.mul(rate, da)
-        });
-        let tilt = self.sub(dp1, dp0).map(|du| {
-            let len = self.shared(e, 4, |s| {
-                let dir = s.op(BinaryOp::Sub, p1, p0);
-                s.b.call("length", vec![dir])
-            });
-            let (k_du, one) = (self.op(BinaryOp::Dot, k, du), self.lit(1.0));
-            let along = self.mul(k, k_du);
-            let across = self.op(BinaryOp::Sub, du, along);
-            let dk = self.div(across, len);
-            let cos = self.shared(e, 5, |s| s.b.call("cos", vec![angle]));
-            let one_minus_cos = self.op(BinaryOp::Sub, one, cos);
-            let (dk_kv, dk_v) = (self.mul(dk, kv), self.op(BinaryOp::Dot, dk, v));
-            let k_dk_v = self.mul(k, dk_v);
-            let sum = self.op(BinaryOp::Add, dk_kv, k_dk_v);
-            let bend = self.mul(one_minus_cos, sum);
-            let s_dk = self.sine_part(e, a, dk, k, cos);
-            let s_v = self.shared(e, 6, |s| s.sine_part(e, a, v, k, cos));
-            let t1 = self.mul(kv, s_dk);
-            let dk_sv = self.op(BinaryOp::Dot, dk, s_v);
-            let t2 = self.mul(k, dk_sv);
-            let rest = self.op(BinaryOp::Sub, bend, t1);
-            self.op(BinaryOp::Sub, rest, t2)
-        });
-        let sum = self.add(moved, dp0);
-        let sum = self.add(sum, turning);
-        let total = self.add(sum, tilt)?;
-        Some(self.b.convert(total, vector))
-    }
-
-    /// The vector `w` rotated as `rotate(e)` rotates, about the origin.
-    fn rotated(&mut self, e: ExprId, a: &[ExprId], w: ExprId) -> ExprId {
-        let point = Type::of(Base::Point);
-        let axis_point = self.shared(e, 7, |s| {
-            let dir = s.op(BinaryOp::Sub, a[3], a[2]);
-            s.b.convert(dir, point)
-        });
-        let origin = self.shared(e, 8, |s| s.b.zero(point));
-        let w = self.b.convert(w, point);
-        let turned = self.b.call("rotate", vec![w, a[1], origin, axis_point]);
-        self.b.convert(turned, Type::of(Base::Vector))
-    }
-
-    /// S(w) = R w - k (k.w) - cos θ (w - k (k.w)): the sine part of the rotation of `e`.
-    fn sine_part(&mut self, e: ExprId, a: &[ExprId], w: ExprId, k: ExprId, cos: ExprId) -> ExprId {
-        let turned = self.rotated(e, a, w);
-        let kw = self.op(BinaryOp::Dot, k, w);
-        let parallel = self.mul(k, kw);
-        let across = self.op(BinaryOp::Sub, w, parallel);
-        let cos_across = self.mul(cos, across);
-        let rest = self.op(BinaryOp::Sub, turned, parallel);
-        self.op(BinaryOp::Sub, rest, cos_across)
     }
 
     /// reflect(I, N) = I - 2 (I.N) N and refract(I, N, eta) as RenderMan defines them, written out
@@ -268,27 +124,5 @@ impl Diff<'_> {
         let total = self.op(BinaryOp::Lt, k, zero);
         let none = self.b.zero(vector);
         self.b.select(total, none, refracted)
-    }
-
-    /// translate(M, v) = M T(v) and scale(M, s) = M S(s): linear in M; for the vector,
-    /// M (T(v + dv) - T(v)) = translate(M, dv) - M and M (S(s + ds) - S(s)) = scale(M, ds) -
-    /// scale(M, 0).
-    fn translate_scale(&mut self, name: &str, a: &[ExprId], axis: Axis) -> Option<ExprId> {
-        let (m, v) = (a[0], a[1]);
-        let (dm, dv) = (self.d(m, axis), self.d(v, axis));
-        let t1 = dm.map(|dm| self.b.call(name, vec![dm, v]));
-        let t2 = dv.map(|dv| {
-            let param = self.ty(v);
-            let dv = self.b.convert(dv, param);
-            let moved = self.b.call(name, vec![m, dv]);
-            let base = if name == "translate" {
-                m
-            } else {
-                let zero = self.b.zero(param);
-                self.b.call(name, vec![m, zero])
-            };
-            self.op(BinaryOp::Sub, moved, base)
-        });
-        self.add(t1, t2)
     }
 }

@@ -21,11 +21,12 @@
 //!
 //! Derivative 0 by definition: per-light values (`L`, `Cl`, `Ol`, Stanford's `H`: a light's
 //! values are taken as constant across the pixel), `du` and `dv`, `random()`, the lighting
-//! functions, texture lookups, `fresnel`'s outputs, and the result of any derivative built-in
-//! (there are no second derivatives). Built-ins written in the language (`compiler/stdlib/
-//! builtins.sl`: noise, colour spaces) are differentiated through their code. Left out: the
-//! change of `spline`'s parameter (knots only), and of the matrix of `transform`, `vtransform`,
-//! `ntransform` and of `rotate(m, angle, axis)`'s angle and axis.
+//! functions, texture lookups, the outputs of `lightsource` and `surface` (another shader's
+//! values), and the result of any derivative built-in (there are no second derivatives).
+//! Built-ins written in the language (`compiler/stdlib/builtins.sl`: noise, colour spaces,
+//! `fresnel`, `ptlined`, `rotate`, `translate`, `scale`, `determinant`) are differentiated through
+//! their code. Left out: the change of `spline`'s parameter (knots only), and of the matrix of
+//! `transform`, `vtransform` and `ntransform`.
 //! Points moved through a projective space ("screen", "raster", "NDC") are differentiated as
 //! vectors, without the perspective divide's term. Control flow is differentiated along the path
 //! taken: a value that jumps between branches has the derivative of the branch the pixel took.

@@ -153,7 +153,7 @@ impl Diff<'_> {
     }
 
     /// Before a built-in writes output arguments with derivatives: the same component setter on
-    /// the shadows, or zeros for other outputs (`fresnel`'s).
+    /// the shadows, or zeros for other outputs (`lightsource`'s and `surface`'s).
     fn output_derivatives(&mut self, call: ExprId, out: &mut Block) {
         let expr = self.b.shader.expr(call).clone();
         let ExprKind::Builtin(b, args) = &expr.kind else { return };

@@ -221,11 +221,10 @@ impl Lower<'_> {
                 )
                 .with_note("opt::derivs::differentiate must run before the interpreter's lowering"));
             }
-            "noise" | "snoise" | "pnoise" | "cellnoise" | "diffuse" | "specular" | "phong"
-            | "specularbrdf" => {
+            name if crate::stdlib::is_library_builtin(name) => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
-                    format!("`{}` reached the interpreter as a built-in", b.name),
+                    format!("`{name}` reached the interpreter as a built-in"),
                     span,
                     "this call",
                 )

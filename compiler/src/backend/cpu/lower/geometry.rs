@@ -5,25 +5,22 @@
 //! row. A named space arrives from the caller as two matrices, "current to space" and its inverse
 //! (see `Slot`), so the interpreter never inverts a per-draw matrix per point.
 //!
-//! The matrix builders `translate`, `rotate` and `scale` *postconcatenate* (RI spec 3.2, section
-//! 15.4): in the row-vector convention the result is `m * T`, so `transform(translate(m, t), p)`
-//! is `transform(m, p) + t`: the new transformation applies after `m`. (`RiTranslate` and the
-//! other RI calls concatenate the other way, `T * CTM`, applying the new transformation first;
-//! the shading-language functions are specified as postconcatenating, and Aqsis's `mtranslate`
-//! computes `m * T` in the same convention.)
+//! The matrix builders `translate`, `rotate` and `scale`, `determinant`, `ptlined`, the point
+//! `rotate` and `fresnel` are the library's (`compiler/stdlib/builtins.sl`, where the builders'
+//! postconcatenation is described). `invert` stays here, with the Laplace expansion (`minor`) that
+//! the library's `determinant` repeats operation for operation.
 //!
 //! This module also dispatches the built-ins of `curves` (`spline`) and `pattern` (`match`), checks
-//! the colour space names `ctransform` reads from the binding (its conversions are the library's,
-//! `compiler/stdlib/builtins.sl`), and holds `fresnel`, `ptlined`, the point `rotate` and `depth`.
+//! the colour space names `ctransform` reads from the binding (its conversions are the library's),
+//! and holds `depth`.
 
 use super::{Lower, Val};
 use crate::backend::CLIP_INPUT;
-use crate::backend::cpu::code::{Binary, Compare, Reg, Ternary, Unary};
+use crate::backend::cpu::code::{Binary, Compare, Reg};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::ExprId;
 use crate::ir::types::{Base, Type};
 use crate::sema::builtins::Builtin;
-use crate::source::Span;
 
 /// How `transform` treats a three-component value.
 #[derive(Copy, Clone, PartialEq, Eq)]
@@ -107,66 +104,7 @@ impl Lower<'_> {
                 Val::Float((0..9).map(|k| m[(k / 3) * 4 + k % 3]).collect())
             }
             "invert" => Val::Float(self.invert(vals[0].floats(), arg_ty(0).base)),
-            "determinant" => {
-                let m = vals[0].floats().to_vec();
-                let rows: Vec<usize> = (0..4).collect();
-                Val::Float(vec![self.minor(&m, 4, &rows, &rows)])
-            }
-            "translate" | "scale" => {
-                let (m, v) = (vals[0].floats(), vals[1].floats());
-                let op = if b.name == "translate" { Binary::Add } else { Binary::Mul };
-                let out = (0..16)
-                    .map(|k| {
-                        let (i, j) = (k / 4, k % 4);
-                        match (j, op) {
-                            (3, _) => m[k],
-                            // (m T)[i][j] = m[i][j] + m[i][3] t[j].
-                            (_, Binary::Add) => {
-                                let shift = self.emit.binary(Binary::Mul, m[i * 4 + 3], v[j]);
-                                self.emit.binary(Binary::Add, m[k], shift)
-                            }
-                            // (m S)[i][j] = m[i][j] s[j].
-                            _ => self.emit.binary(Binary::Mul, m[k], v[j]),
-                        }
-                    })
-                    .collect();
-                Val::Float(out)
-            }
-            "rotate" if ret.base == Base::Matrix4 => {
-                let m = vals[0].floats();
-                let r = self.rotation(vals[1].floats()[0], vals[2].floats());
-                let out = (0..16)
-                    .map(|k| {
-                        let (i, j) = (k / 4, k % 4);
-                        if j == 3 {
-                            return m[k];
-                        }
-                        let row = [m[i * 4], m[i * 4 + 1], m[i * 4 + 2]];
-                        self.dot(&row, &[r[j], r[3 + j], r[6 + j]])
-                    })
-                    .collect();
-                Val::Float(out)
-            }
-            "rotate" => {
-                // The point about the axis through p0 and p1: (q - p0) R + p0.
-                let (q, p0, p1) = (vals[0].floats(), vals[2].floats(), vals[3].floats());
-                let axis = self.zip(Binary::Sub, p1, p0);
-                let r = self.rotation(vals[1].floats()[0], &axis);
-                let v = self.zip(Binary::Sub, q, p0);
-                let out = (0..3)
-                    .map(|j| {
-                        let turned = self.dot(&v, &[r[j], r[3 + j], r[6 + j]]);
-                        self.emit.binary(Binary::Add, turned, p0[j])
-                    })
-                    .collect();
-                Val::Float(out)
-            }
-            "ptlined" => Val::Float(vec![self.ptlined(vals[0].floats(), vals[1].floats(), vals[2].floats())]),
             "depth" => Val::Float(vec![self.depth(vals[0].floats()[2])]),
-            "fresnel" => {
-                self.fresnel(vals, args, span)?;
-                Val::Void
-            }
             "__colour_space" => {
                 let Val::Str(name) = &vals[0] else { return Ok(None) };
                 crate::stdlib::check_colour_space(name, span)?;
@@ -192,52 +130,6 @@ impl Lower<'_> {
         }))
     }
 
-    /// The 3x3 rotation by `angle` radians about `axis` (normalized here), row by row, for row
-    /// vectors: `v R = v cos + (k x v) sin + k (k . v)(1 - cos)` (Rodrigues), the matrix of
-    /// `RiRotate`. About +z it turns +x towards +y.
-    fn rotation(&mut self, angle: Reg, axis: &[Reg]) -> [Reg; 9] {
-        let k = self.normalize(axis);
-        let (c, s) = (self.emit.unary(Unary::Cos, angle), self.emit.unary(Unary::Sin, angle));
-        let one = self.emit.float(1.0);
-        let t = self.emit.binary(Binary::Sub, one, c);
-        let mut r = [c; 9];
-        for i in 0..3 {
-            for j in 0..3 {
-                // t k_i k_j, plus cos on the diagonal, plus or minus sin k_m off it.
-                let ki = self.emit.binary(Binary::Mul, t, k[i]);
-                let outer = self.emit.binary(Binary::Mul, ki, k[j]);
-                r[i * 3 + j] = if i == j {
-                    self.emit.binary(Binary::Add, outer, c)
-                } else {
-                    let m = 3 - i - j;
-                    let sk = self.emit.binary(Binary::Mul, s, k[m]);
-                    // (i, j) = (0, 1), (1, 2), (2, 0) add s k_m; the transposed places subtract.
-                    if (i + 1) % 3 == j {
-                        self.emit.binary(Binary::Add, outer, sk)
-                    } else {
-                        self.emit.binary(Binary::Sub, outer, sk)
-                    }
-                };
-            }
-        }
-        r
-    }
-
-    /// The distance from `q` to the segment from `a` to `b`: to the nearest point `a + t (b - a)`
-    /// with t clamped to [0, 1] (a point segment, whose t is 0/0 = NaN, clamps to `a`).
-    fn ptlined(&mut self, a: &[Reg], b: &[Reg], q: &[Reg]) -> Reg {
-        let d = self.zip(Binary::Sub, b, a);
-        let w = self.zip(Binary::Sub, q, a);
-        let along = self.dot(&w, &d);
-        let dd = self.dot(&d, &d);
-        let t = self.emit.binary(Binary::Div, along, dd);
-        let (zero, one) = (self.emit.float(0.0), self.emit.float(1.0));
-        let t = self.emit.ternary(Ternary::Clamp, t, zero, one);
-        let td = self.zip(Binary::Mul, &d, &[t]);
-        let off = self.zip(Binary::Sub, &w, &td);
-        self.length(&off)
-    }
-
     /// `depth(p)`: `(z - near) / (far - near)` for z in camera space, which the interpreter takes
     /// to be "current". Near and far come from the [`CLIP_INPUT`] input; an empty range (among them
     /// the evaluator's default of zeros) counts as 1, so that an unset slot gives plain z.
@@ -250,54 +142,6 @@ impl Lower<'_> {
         let range = self.emit.select(true, empty, one, range);
         let from_near = self.emit.binary(Binary::Sub, z, near);
         self.emit.binary(Binary::Div, from_near, range)
-    }
-
-    /// `fresnel(I, N, eta, Kr, Kt [, R, T])`: the Fresnel reflectance of a dielectric for
-    /// unpolarized light, `Kr = (rs^2 + rp^2) / 2`, with `eta` the ratio of the index on the side
-    /// of I to the index of the side entered (as for `refract`), and `Kt = 1 - Kr`; under total
-    /// internal reflection Kr = 1 and Kt = 0. The angle comes from I and N normalized (its cosine
-    /// taken as positive, whichever way N faces). `R` and `T` are `reflect(I, N)` and
-    /// `refract(I, N, eta)`.
-    fn fresnel(&mut self, vals: &[Val], args: &[ExprId], span: Span) -> Result<(), Diagnostic> {
-        let (i, n, eta) = (vals[0].floats(), vals[1].floats(), vals[2].floats()[0]);
-        let (zero, one, half) = (self.emit.float(0.0), self.emit.float(1.0), self.emit.float(0.5));
-        let ni = self.normalize(i);
-        let nn = self.normalize(n);
-        let cos_i = self.dot(&ni, &nn);
-        let cos_i = self.emit.unary(Unary::Abs, cos_i);
-        // Snell: sin_t^2 = eta^2 (1 - cos_i^2).
-        let c2 = self.emit.binary(Binary::Mul, cos_i, cos_i);
-        let sin_i2 = self.emit.binary(Binary::Sub, one, c2);
-        let eta2 = self.emit.binary(Binary::Mul, eta, eta);
-        let sin_t2 = self.emit.binary(Binary::Mul, eta2, sin_i2);
-        let total = self.emit.compare(Compare::Gt, sin_t2, one);
-        let cos_t2 = self.emit.binary(Binary::Sub, one, sin_t2);
-        let cos_t2 = self.emit.binary(Binary::Max, cos_t2, zero);
-        let cos_t = self.emit.unary(Unary::Sqrt, cos_t2);
-        // rs = (eta cos_i - cos_t) / (eta cos_i + cos_t), rp = (cos_i - eta cos_t) / (cos_i + eta cos_t).
-        let ratio = |this: &mut Self, a: Reg, b: Reg| {
-            let num = this.emit.binary(Binary::Sub, a, b);
-            let den = this.emit.binary(Binary::Add, a, b);
-            let r = this.emit.binary(Binary::Div, num, den);
-            this.emit.binary(Binary::Mul, r, r)
-        };
-        let eci = self.emit.binary(Binary::Mul, eta, cos_i);
-        let rs2 = ratio(self, eci, cos_t);
-        let ect = self.emit.binary(Binary::Mul, eta, cos_t);
-        let rp2 = ratio(self, cos_i, ect);
-        let sum = self.emit.binary(Binary::Add, rs2, rp2);
-        let kr = self.emit.binary(Binary::Mul, sum, half);
-        let kr = self.emit.select(true, total, one, kr);
-        let kt = self.emit.binary(Binary::Sub, one, kr);
-        self.write_output(args[3], &Val::Float(vec![kr]), span)?;
-        self.write_output(args[4], &Val::Float(vec![kt]), span)?;
-        if args.len() == 7 {
-            let r = self.reflect(i, n);
-            let t = self.refract(i, n, eta);
-            self.write_output(args[5], &Val::Float(r), span)?;
-            self.write_output(args[6], &Val::Float(t), span)?;
-        }
-        Ok(())
     }
 
     /// The matrices of a named space: (current to it, it to current); identities for "current".

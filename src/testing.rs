@@ -33,7 +33,6 @@ use patina_compiler::backend::cpu::{CpuProgram, EvalError, Evaluator, SlotKind};
 use patina_compiler::ir::Shader;
 use patina_compiler::ir::types::Type;
 use patina_compiler::syntax::ast::ShaderKind;
-use patina_compiler::syntax::preprocess::read_source_file;
 use patina_runtime::gpu::Gpu;
 use patina_runtime::image::{Comparison, Image, ImageError, Thresholds, compare};
 use patina_runtime::render::program::LoadedShader;
@@ -270,23 +269,9 @@ impl Shade {
 
     /// Checks, binds and differentiates the shader through [`Compiler`]'s loading.
     fn load(&self) -> Result<(LoadedShader, Diagnostics), TestError> {
-        let (name, text, dir) = match &self.input {
-            Input::Text(text) => ("test.sl".to_string(), text.clone(), None),
-            Input::File(path) => {
-                let text = match read_source_file(path) {
-                    Ok(Some(text)) => text,
-                    Ok(None) => {
-                        return Err(TestError::Compile(CompileError::Io {
-                            path: path.clone(),
-                            message: "no such file".into(),
-                        }));
-                    }
-                    Err(message) => {
-                        return Err(TestError::Compile(CompileError::Io { path: path.clone(), message }));
-                    }
-                };
-                (path.display().to_string(), text, path.parent())
-            }
+        let checked = match &self.input {
+            Input::Text(text) => self.compiler.check_text("test.sl", text),
+            Input::File(path) => self.compiler.check_file(path)?,
         };
         const KINDS: [ShaderKind; 5] = [
             ShaderKind::Surface,
@@ -296,13 +281,14 @@ impl Shade {
             ShaderKind::Imager,
         ];
         for kind in KINDS {
-            match self.compiler.load_shader(&name, &text, dir, kind) {
+            match self.compiler.load_shader(&checked, kind) {
                 Ok(loaded) => return Ok(loaded),
                 Err(CompileError::NoShader { .. }) => continue,
                 Err(e) => return Err(e.into()),
             }
         }
-        Err(TestError::NoShader { file: name, name: self.shader.clone() })
+        let file = checked.sources.file(checked.root).name.clone();
+        Err(TestError::NoShader { file, name: self.shader.clone() })
     }
 }
 

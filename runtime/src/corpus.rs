@@ -18,7 +18,6 @@ use std::time::{Duration, Instant};
 
 use patina_compiler::diag::Severity;
 use patina_compiler::syntax::ast::ShaderKind;
-use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
 use crate::gpu::Gpu;
 use crate::image::{Comparison, Image, compare};
@@ -145,21 +144,13 @@ pub fn run_file(dir: &Path, path: &Path, options: &Options, gpu: Option<&Gpu>) -
         gpu_image: None,
         time: Duration::ZERO,
     };
-    let text = match read_source_file(path) {
-        Ok(Some(text)) => text,
-        Ok(None) => {
-            entry.check = Outcome::Failed("no such file".into());
-            return entry;
-        }
-        Err(reason) => {
-            entry.check = Outcome::Failed(reason);
+    let checked = match patina_compiler::check_file(path, &options.include_dirs) {
+        Ok(checked) => checked,
+        Err(e) => {
+            entry.check = Outcome::Failed(e.reason);
             return entry;
         }
     };
-    let mut include_dirs = vec![path.parent().unwrap_or(Path::new(".")).to_path_buf()];
-    include_dirs.extend(options.include_dirs.iter().cloned());
-    let checked =
-        patina_compiler::check_source(&path.display().to_string(), &text, &FsLoader { include_dirs });
     let first_error = checked.diagnostics.iter().find(|d| d.severity == Severity::Error);
     if let Some(e) = first_error {
         entry.check = Outcome::Failed(format!("{}: {}", e.code, e.message));

@@ -5,12 +5,10 @@ use std::process::ExitCode;
 
 use codespan_reporting::term::{self, termcolor};
 use patina_compiler::diag::{self, Diagnostic};
-use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
 use super::{CheckArgs, ColorChoice, OutputFormat};
 
 pub fn run(args: CheckArgs) -> Result<ExitCode, String> {
-    let loader = FsLoader { include_dirs: args.include.clone() };
     let color = match args.color {
         ColorChoice::Always => termcolor::ColorChoice::Always,
         ColorChoice::Never => termcolor::ColorChoice::Never,
@@ -21,21 +19,14 @@ pub fn run(args: CheckArgs) -> Result<ExitCode, String> {
     let mut stdout = std::io::stdout().lock();
     let (mut errors, mut warnings, mut unreadable) = (0usize, 0usize, 0usize);
     for path in &args.files {
-        let name = path.to_string_lossy();
-        let text = match read_source_file(path) {
-            Ok(Some(text)) => text,
-            Ok(None) => {
-                eprintln!("error: cannot read `{name}`: no such file");
-                unreadable += 1;
-                continue;
-            }
-            Err(reason) => {
-                eprintln!("error: cannot read `{name}`: {reason}");
+        let checked = match patina_compiler::check_file(path, &args.include) {
+            Ok(checked) => checked,
+            Err(e) => {
+                eprintln!("error: {e}");
                 unreadable += 1;
                 continue;
             }
         };
-        let checked = patina_compiler::check_source(&name, &text, &loader);
         let list: Vec<Diagnostic> = checked.diagnostics.iter().cloned().collect();
         errors += list.iter().filter(|d| d.is_error()).count();
         warnings += list.iter().filter(|d| !d.is_error()).count();

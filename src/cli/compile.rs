@@ -43,22 +43,11 @@ fn light(spec: &str, file: &Path) -> Light {
 /// the first surface shader, or (in a file without one) the first shader. `None` when the file
 /// does not check (compiling it reports why) or has no such shader.
 fn target(file: &Path, name: Option<&str>, include: &[PathBuf]) -> Option<(ShaderKind, String)> {
-    let text = patina_compiler::syntax::preprocess::read_source_file(file).ok()??;
-    let mut include_dirs: Vec<PathBuf> = file.parent().map(Path::to_path_buf).into_iter().collect();
-    include_dirs.extend(include.iter().cloned());
-    let checked = patina_compiler::check_source(
-        &file.display().to_string(),
-        &text,
-        &patina_compiler::syntax::preprocess::FsLoader { include_dirs },
-    );
+    let checked = patina_compiler::check_file(file, include).ok()?;
     if checked.has_errors() {
         return None;
     }
-    let shaders = &checked.program.shaders;
-    let found = match name {
-        Some(n) => shaders.iter().find(|s| s.name == n),
-        None => shaders.iter().find(|s| s.kind == ShaderKind::Surface).or(shaders.first()),
-    }?;
+    let found = checked.find_shader(Some(ShaderKind::Surface), name).or(checked.find_shader(None, name))?;
     Some((found.kind, found.name.to_string()))
 }
 
@@ -68,18 +57,9 @@ fn imager(args: &CompileArgs, name: &str) -> Result<ExitCode, String> {
     use patina_compiler::backend::binding::Binding;
     use patina_compiler::backend::cpu::CpuProgram;
     use patina_compiler::backend::wgsl::{KERNEL_WORKGROUP, compile_kernel};
-    let text = patina_compiler::syntax::preprocess::read_source_file(&args.file)
-        .map_err(|e| format!("cannot read `{}`: {e}", args.file.display()))?
-        .ok_or_else(|| format!("cannot read `{}`: no such file", args.file.display()))?;
-    let mut include_dirs: Vec<PathBuf> = args.file.parent().map(Path::to_path_buf).into_iter().collect();
-    include_dirs.extend(args.include.iter().cloned());
     let shown = args.file.display().to_string();
-    let checked = patina_compiler::check_source(
-        &shown,
-        &text,
-        &patina_compiler::syntax::preprocess::FsLoader { include_dirs },
-    );
-    let Some(found) = checked.program.shaders.iter().find(|s| s.name == name) else {
+    let checked = patina_compiler::check_file(&args.file, &args.include).map_err(|e| e.to_string())?;
+    let Some(found) = checked.find_shader(None, Some(name)) else {
         return Err(format!("`{shown}` has errors"));
     };
     let mut numbers = Vec::new();

@@ -7,33 +7,21 @@ use patina_compiler::backend::cpu::{CpuProgram, EvalError, Evaluator, SlotKind};
 use patina_compiler::diag;
 use patina_compiler::ir::Shader;
 use patina_compiler::syntax::ast::ShaderKind;
-use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
 use super::EvalArgs;
 
 pub fn run(args: EvalArgs) -> Result<ExitCode, String> {
     let name = args.file.to_string_lossy().into_owned();
-    let text = match read_source_file(&args.file) {
-        Ok(Some(text)) => text,
-        Ok(None) => return Err(format!("cannot read `{name}`: no such file")),
-        Err(reason) => return Err(format!("cannot read `{name}`: {reason}")),
-    };
-    let loader = FsLoader { include_dirs: args.include.clone() };
-    let checked = patina_compiler::check_source(&name, &text, &loader);
-    let list = checked.diagnostics.clone().into_vec();
-    if !list.is_empty() {
-        eprint!("{}", diag::render_text(&checked.sources, &list));
-    }
+    let checked = patina_compiler::check_file(&args.file, &args.include).map_err(|e| e.to_string())?;
+    eprint!("{}", checked.diagnostics_text());
     if checked.has_errors() {
         return Ok(ExitCode::FAILURE);
     }
-    let shaders = &checked.program.shaders;
     let shader = match &args.shader {
-        Some(wanted) => shaders
-            .iter()
-            .find(|s| s.name == wanted.as_str())
+        Some(wanted) => checked
+            .find_shader(None, Some(wanted))
             .ok_or_else(|| format!("`{name}` has no shader `{wanted}`"))?,
-        None => shaders.first().ok_or_else(|| format!("`{name}` defines no shader"))?,
+        None => checked.find_shader(None, None).ok_or_else(|| format!("`{name}` defines no shader"))?,
     };
 
     let lights: Vec<Vec<(String, Vec<f64>)>> =

@@ -3,9 +3,7 @@
 
 use std::process::ExitCode;
 
-use patina_compiler::diag;
 use patina_compiler::sema::explain::explain;
-use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
 use super::ExplainArgs;
 
@@ -13,18 +11,8 @@ pub fn run(args: ExplainArgs) -> Result<ExitCode, String> {
     if args.file.extension().is_some_and(|e| e == "toml") {
         return super::explain_scene::run(&args.file);
     }
-    let name = args.file.to_string_lossy().into_owned();
-    let text = match read_source_file(&args.file) {
-        Ok(Some(text)) => text,
-        Ok(None) => return Err(format!("cannot read `{name}`: no such file")),
-        Err(reason) => return Err(format!("cannot read `{name}`: {reason}")),
-    };
-    let loader = FsLoader { include_dirs: args.include };
-    let checked = patina_compiler::check_source(&name, &text, &loader);
-    let list = checked.diagnostics.clone().into_vec();
-    if !list.is_empty() {
-        eprint!("{}", diag::render_text(&checked.sources, &list));
-    }
+    let checked = patina_compiler::check_file(&args.file, &args.include).map_err(|e| e.to_string())?;
+    eprint!("{}", checked.diagnostics_text());
     print!("{}", explain(&checked.program));
     Ok(if checked.has_errors() { ExitCode::FAILURE } else { ExitCode::SUCCESS })
 }

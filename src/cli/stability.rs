@@ -3,8 +3,7 @@
 
 use std::process::ExitCode;
 
-use patina_compiler::diag;
-use patina_compiler::syntax::preprocess::{FsLoader, MemoryLoader, SourceLoader, read_source_file};
+use patina_compiler::syntax::preprocess::{FsLoader, MemoryLoader, SourceLoader};
 use patina_runtime::stability::{self, Options, Row, Subject, table};
 
 use super::progress::{steps, with_bars};
@@ -119,16 +118,12 @@ fn gather(args: &StabilityArgs) -> Result<(Vec<Subject>, Box<dyn SourceLoader>),
     let mut all = Vec::new();
     for path in &args.files {
         let name = path.to_string_lossy().into_owned();
-        let text = match read_source_file(path) {
-            Ok(Some(text)) => text,
-            Ok(None) => return Err(format!("cannot read `{name}`: no such file")),
-            Err(reason) => return Err(format!("cannot read `{name}`: {reason}")),
-        };
-        let checked = patina_compiler::check_source(&name, &text, &loader);
+        let checked = patina_compiler::check_file(path, &args.include).map_err(|e| e.to_string())?;
         if checked.has_errors() {
-            eprint!("{}", diag::render_text(&checked.sources, &checked.diagnostics.clone().into_vec()));
+            eprint!("{}", checked.diagnostics_text());
             return Err(format!("`{name}` does not check; nothing swept"));
         }
+        let text = checked.sources.file(checked.root).text.to_string();
         all.extend(stability::subjects(&name, &text, &loader, false)?);
     }
     Ok((all, Box::new(loader)))

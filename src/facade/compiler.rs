@@ -5,6 +5,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use patina_compiler::Checked;
 use patina_compiler::backend::binding::{Binding, BoundLight};
 use patina_compiler::backend::cpu::CpuProgram;
 use patina_compiler::backend::object::{Beside, CompiledObject, HostPart, compile_object};
@@ -14,7 +15,7 @@ use patina_compiler::diag::{Diagnostic, Severity};
 use patina_compiler::opt::Prepared;
 use patina_compiler::source::SourceMap;
 use patina_compiler::syntax::ast::ShaderKind;
-use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
+use patina_compiler::syntax::preprocess::FsLoader;
 use patina_runtime::render::program::{DisplacementProgram, LightProgram, LoadedShader, SurfaceProgram};
 
 use super::Value;
@@ -175,19 +176,29 @@ impl Compiler {
 
     /// Reads and compiles the surface shader of `path`.
     pub fn compile_file(&self, path: impl AsRef<Path>) -> Result<Compiled, CompileError> {
-        let path = path.as_ref();
-        let text = read(path)?;
-        self.compile(&path.display().to_string(), &text, path.parent())
+        self.compile(&self.check_file(path.as_ref())?)
     }
 
     /// Compiles the surface shader of `text`, shown in diagnostics as `name`; includes are found
     /// in the include directories.
     pub fn compile_source(&self, name: &str, text: &str) -> Result<Compiled, CompileError> {
-        self.compile(name, text, None)
+        self.compile(&self.check_text(name, text))
     }
 
-    fn compile(&self, name: &str, text: &str, dir: Option<&Path>) -> Result<Compiled, CompileError> {
-        let loaded = self.load(name, text, dir, ShaderKind::Surface, self.shader.as_deref(), &self.fixed)?;
+    /// Reads and checks `path` as every command does ([`patina_compiler::check_file`]: beside
+    /// the file, then in the include directories).
+    pub(crate) fn check_file(&self, path: &Path) -> Result<Checked, CompileError> {
+        patina_compiler::check_file(path, &self.include_dirs)
+            .map_err(|e| CompileError::Io { path: e.path, message: e.reason })
+    }
+
+    /// Checks `text`, shown in diagnostics as `name`, with the include directories.
+    pub(crate) fn check_text(&self, name: &str, text: &str) -> Checked {
+        patina_compiler::check_source(name, text, &FsLoader { include_dirs: self.include_dirs.clone() })
+    }
+
+    fn compile(&self, checked: &Checked) -> Result<Compiled, CompileError> {
+        let loaded = self.load(checked, ShaderKind::Surface, self.shader.as_deref(), &self.fixed)?;
         let mut warnings = loaded.warnings;
         let surface = loaded.shader;
         let mut lights = Vec::new();
@@ -275,15 +286,7 @@ impl Compiler {
     fn load_bound(&self, light: &Light, kind: ShaderKind) -> Result<Loaded, CompileError> {
         match &light.source {
             Source::File(path) => {
-                let text = read(path)?;
-                self.load(
-                    &path.display().to_string(),
-                    &text,
-                    path.parent(),
-                    kind,
-                    light.name.as_deref(),
-                    &light.fixed,
-                )
+                self.load(&self.check_file(path)?, kind, light.name.as_deref(), &light.fixed)
             }
             Source::Stdlib(module) => {
                 let shown = format!("{}/{module}", patina_compiler::stdlib::PREFIX);
@@ -291,40 +294,34 @@ impl Compiler {
                     path: PathBuf::from(&shown),
                     message: "no such standard-library module".into(),
                 })?;
-                self.load(&shown, text, None, kind, light.name.as_deref(), &light.fixed)
+                self.load(&self.check_text(&shown, text), kind, light.name.as_deref(), &light.fixed)
             }
             Source::Text { name, text } => {
-                self.load(name, text, None, kind, light.name.as_deref(), &light.fixed)
+                self.load(&self.check_text(name, text), kind, light.name.as_deref(), &light.fixed)
             }
         }
     }
 
-    /// The checked, bound and differentiated shader of `text` with its warnings, for the CPU
-    /// reference ([`crate::testing`]): the [`shader`](Compiler::shader) named, or the first, of `kind`.
+    /// The bound and prepared shader of `checked` with its warnings, for the CPU reference
+    /// ([`crate::testing`]): the [`shader`](Compiler::shader) named, or the first, of `kind`.
     pub(crate) fn load_shader(
         &self,
-        name: &str,
-        text: &str,
-        dir: Option<&Path>,
+        checked: &Checked,
         kind: ShaderKind,
     ) -> Result<(LoadedShader, Diagnostics), CompileError> {
-        let loaded = self.load(name, text, dir, kind, self.shader.as_deref(), &self.fixed)?;
+        let loaded = self.load(checked, kind, self.shader.as_deref(), &self.fixed)?;
         Ok((loaded.shader, loaded.warnings))
     }
 
-    /// Checks a source, picks its shader of `kind`, binds it to `fixed` and differentiates it.
+    /// Picks the shader of `kind` of a checked source, binds it to `fixed` and prepares it.
     fn load(
         &self,
-        name: &str,
-        text: &str,
-        dir: Option<&Path>,
+        checked: &Checked,
         kind: ShaderKind,
         shader: Option<&str>,
         fixed: &[(String, Value)],
     ) -> Result<Loaded, CompileError> {
-        let mut include_dirs: Vec<PathBuf> = dir.map(Path::to_path_buf).into_iter().collect();
-        include_dirs.extend(self.include_dirs.iter().cloned());
-        let checked = patina_compiler::check_source(name, text, &FsLoader { include_dirs });
+        let name = checked.sources.file(checked.root).name.as_str();
         let sources = Arc::new(checked.sources.clone());
         let all: Vec<Diagnostic> = checked.diagnostics.iter().cloned().collect();
         if checked.has_errors() {
@@ -387,14 +384,6 @@ impl Compiler {
 struct Loaded {
     shader: LoadedShader,
     warnings: Diagnostics,
-}
-
-fn read(path: &Path) -> Result<String, CompileError> {
-    match read_source_file(path) {
-        Ok(Some(text)) => Ok(text),
-        Ok(None) => Err(CompileError::Io { path: path.to_path_buf(), message: "no such file".into() }),
-        Err(message) => Err(CompileError::Io { path: path.to_path_buf(), message }),
-    }
 }
 
 /// A diagnostic from a stage after checking (a limit, a feature the GPU lacks, an internal error).

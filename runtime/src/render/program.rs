@@ -2,7 +2,6 @@
 //! stages and built for both backends, the bound lights, and the values of every parameter (as
 //! the host program computes them: the scene's value or the default).
 
-use std::path::Path;
 use std::sync::Arc;
 
 use patina_compiler::bind::{Consumed, Decision, Fixed};
@@ -18,7 +17,6 @@ use patina_compiler::ir::{ExprKind, Literal, Shader};
 use patina_compiler::opt::Prepared;
 use patina_compiler::split::Stages;
 use patina_compiler::syntax::ast::ShaderKind;
-use patina_compiler::syntax::preprocess::{FsLoader, read_source_file};
 
 use super::RenderError;
 use super::frame::{Frame, global_value};
@@ -158,29 +156,12 @@ pub fn load_reading(
 ) -> Result<LoadedShader, RenderError> {
     let path = shader.path.as_path();
     let shown = path.display().to_string();
-    let module = shown.strip_prefix(patina_compiler::stdlib::PREFIX).and_then(|m| m.strip_prefix('/'));
-    let text = match module.and_then(patina_compiler::stdlib::source) {
-        Some(text) => Ok(Some(text.to_string())),
-        None => read_source_file(path),
-    };
-    let text = match text {
-        Ok(Some(text)) => text,
-        Ok(None) => return Err(RenderError::Input(format!("cannot read {shown}: no such file"))),
-        Err(reason) => return Err(RenderError::Input(format!("cannot read {shown}: {reason}"))),
-    };
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let include_dirs = std::iter::once(dir).chain(shader.include_dirs.iter().cloned()).collect();
-    let checked = patina_compiler::check_source(&shown, &text, &FsLoader { include_dirs });
+    let checked = patina_compiler::check_file(path, &shader.include_dirs)
+        .map_err(|e| RenderError::Input(format!("cannot read {shown}: {}", e.reason)))?;
     if checked.has_errors() {
-        let list: Vec<_> = checked.diagnostics.iter().cloned().collect();
-        let text = patina_compiler::diag::render_text(&checked.sources, &list);
-        return Err(RenderError::Shader(text));
+        return Err(RenderError::Shader(checked.diagnostics_text()));
     }
-    let found = checked.program.shaders.iter().filter(|s| s.kind == kind).find(|s| match &shader.name {
-        Some(name) => s.name == name.as_str(),
-        None => true,
-    });
-    let Some(found) = found else {
+    let Some(found) = checked.find_shader(Some(kind), shader.name.as_deref()) else {
         let what = match &shader.name {
             Some(n) => format!("no {} shader `{n}`", kind.keyword()),
             None => format!("no {} shader", kind.keyword()),

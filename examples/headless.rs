@@ -1,6 +1,6 @@
 //! A complete headless wgpu program with a Patina shader: its own device, mesh and camera, the
 //! plastic shader under a point light, one frame written to a PNG. It draws what
-//! `patina render examples/headless.toml` draws (tests/headless.rs checks that).
+//! `patina render examples/headless.toml` draws (tests/library/headless.rs checks that).
 //!
 //! `cargo run --example headless -- out.png`
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the seed corpora in fuzz/corpus/{parse,check,scene} from the repository's own inputs:
-# the example and stdlib shaders, the swatches, the shader sources inside compiler/tests/*.rs,
+# the example and stdlib shaders, the swatches, the shader sources inside compiler/tests/**/*.rs,
 # and the example and test scenes. Run from anywhere; existing corpus entries are kept (libFuzzer
 # adds to the same directories while it runs).
 set -euo pipefail
@@ -34,7 +34,7 @@ def unescape(body):
     return re.sub(r'\\(.)', lambda m: table.get(m.group(1), m.group(0)), body)
 kinds = re.compile(r'\b(surface|light|displacement|volume|imager)\s+\w+\s*\(|^\s*#\s*(include|define)', re.M)
 count = 0
-for path in sorted(pathlib.Path(tests).glob("*.rs")):
+for path in sorted(pathlib.Path(tests).rglob("*.rs")):
     for m in literal.finditer(path.read_text()):
         text = m.group(2) if m.group(2) is not None else unescape(m.group(3))
         if not kinds.search(text):

@@ -5,9 +5,7 @@ use std::path::{Path, PathBuf};
 
 use patina_runtime::image::Image;
 
-mod support;
-
-use support::patina;
+use crate::support::patina;
 
 fn scene(name: &str) -> String {
     format!("{}/examples/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"))
@@ -15,7 +13,7 @@ fn scene(name: &str) -> String {
 
 /// A fresh directory for one test's output.
 fn scratch(test: &str) -> PathBuf {
-    support::scratch_dir("bench", test)
+    crate::support::scratch_dir("bench", test)
 }
 
 /// The CSV's rows as maps from column to value.

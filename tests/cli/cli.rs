@@ -4,9 +4,7 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-mod support;
-
-use support::patina;
+use crate::support::patina;
 
 fn scratch(name: &str, contents: &[u8]) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("patina-cli-{}", std::process::id()));

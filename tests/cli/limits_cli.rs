@@ -4,13 +4,11 @@
 use std::path::PathBuf;
 use std::process::Output;
 
-mod support;
-
-use support::patina;
+use crate::support::patina;
 
 /// A directory of this test's own.
 fn scratch(test: &str) -> PathBuf {
-    support::scratch_dir("limits-cli", test)
+    crate::support::scratch_dir("limits-cli", test)
 }
 
 fn example(name: &str) -> String {

@@ -5,16 +5,14 @@
 use std::path::PathBuf;
 use std::process::Output;
 
-mod support;
-
 /// Runs `patina stability` with `args`.
 fn patina(args: &[&str]) -> Output {
-    support::patina(&[&["stability"], args].concat())
+    crate::support::patina(&[&["stability"], args].concat())
 }
 
 /// A scratch directory of this test alone (tests run in parallel).
 fn scratch(test: &str) -> PathBuf {
-    support::scratch_dir("stability", test)
+    crate::support::scratch_dir("stability", test)
 }
 
 fn shader_file(test: &str, source: &str) -> String {

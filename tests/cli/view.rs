@@ -15,9 +15,7 @@ use std::time::{Duration, Instant};
 
 use patina_runtime::image::{Image, Thresholds, compare};
 
-mod support;
-
-use support::{patina, scratch_dir};
+use crate::support::{patina, scratch_dir};
 
 /// The window's size, and the screen's (larger, so that the whole window is on it).
 const WINDOW: (u32, u32) = (160, 120);

@@ -10,9 +10,7 @@ use std::time::{Duration, Instant};
 
 use patina::{Compiler, Update, Watcher};
 
-mod support;
-
-use support::scratch_dir;
+use crate::support::scratch_dir;
 
 /// How long any one expected event may take to arrive.
 const TIMEOUT: Duration = Duration::from_secs(10);

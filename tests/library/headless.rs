@@ -1,8 +1,6 @@
 //! `examples/headless.rs`, a user's own wgpu program drawing through the facade, draws what the
 //! renderer draws for the same scene (`examples/headless.toml`), within the gallery's thresholds.
 
-mod support;
-
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -19,7 +17,7 @@ fn example(name: &str) -> PathBuf {
 #[test]
 fn the_headless_example_draws_what_patina_render_draws() {
     let Some(gpu) = gpu::for_tests() else { return };
-    let dir = support::scratch_dir("headless", "example");
+    let dir = crate::support::scratch_dir("headless", "example");
     let png = dir.join("headless.png");
     let run = Command::new(example("headless"))
         .arg(&png)

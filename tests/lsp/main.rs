@@ -1,7 +1,6 @@
 //! `patina lsp` as an editor sees it: the real binary, spoken to over stdio in framed JSON-RPC
 //! (`lsp/client.rs`), answering with the compiler's own diagnostics, types and rates.
 
-#[path = "lsp/client.rs"]
 mod client;
 
 use std::path::{Path, PathBuf};

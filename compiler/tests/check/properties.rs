@@ -189,7 +189,7 @@ proptest! {
     /// Mutations of a valid shader: one token removed or duplicated anywhere.
     #[test]
     fn mutated_shaders_never_panic(cut in 0usize..400, len in 0usize..6, dup in any::<bool>()) {
-        let valid = include_str!("../../examples/shaders/bricks.sl");
+        let valid = include_str!("../../../examples/shaders/bricks.sl");
         let cut = cut.min(valid.len());
         let end = (cut + len).min(valid.len());
         if valid.is_char_boundary(cut) && valid.is_char_boundary(end) {

@@ -6,18 +6,12 @@
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
 use patina_compiler::diag::Code;
-use patina_compiler::syntax::preprocess::MemoryLoader;
 
-/// Compiles the only shader of `source` for `binding`.
-fn try_compile(source: &str, binding: &Binding) -> Result<CpuProgram, patina_compiler::diag::Diagnostic> {
-    let checked = patina_compiler::check_source("test.sl", source, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()), binding)
-}
+use crate::support::try_compile;
 
 /// Compiles the only shader of `source`, panicking with the diagnostic on failure.
 fn compile(source: &str) -> CpuProgram {
-    try_compile(source, &Binding::default()).unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    crate::support::compile(source, &Binding::default())
 }
 
 /// Evaluates `outputs` at points given by columns, after setting `uniforms`, in f64 and in f32.

@@ -35,13 +35,7 @@ fn program(body: &str) -> CpuProgram {
     let source = format!(
         "surface t() {{\n  float x;\n  {body}\n  Ci = color(x, Du(x), Dv(x));\n  Oi = color(filterwidth(x), Deriv(x, u), filterstep(0.5, x));\n}}\n"
     );
-    let checked = patina_compiler::check_source("t.sl", &source, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{source}\n{:?}", checked.diagnostics);
-    CpuProgram::compile(
-        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
-        &Binding::default(),
-    )
-    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    crate::support::compile(&source, &Binding::default())
 }
 
 /// Checks AD against finite differences at every point, for the shader computing `x` by `body`.

@@ -38,13 +38,7 @@ fn program(expr: &str, ty: &str) -> CpuProgram {
                    varying int i = 0; varying int j = 0; varying uint m = 0u; varying uint n = 0u;
                    output varying {ty} r = {zero}) {{ r = {expr}; }}"
     );
-    let checked = patina_compiler::check_source("t.sl", &source, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{expr}: {:?}", checked.diagnostics);
-    CpuProgram::compile(
-        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
-        &Binding::default(),
-    )
-    .unwrap()
+    crate::support::compile(&source, &Binding::default())
 }
 
 /// `r` at every combination of grid values for `a`, `b`, `c` (as many as `arity`), in f32.

@@ -7,10 +7,7 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 
 /// Compiles the only shader of `source`, panicking with the rendered diagnostics on failure.
 fn compile(source: &str, binding: &Binding) -> CpuProgram {
-    let checked = patina_compiler::check_source("test.sl", source, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()), binding)
-        .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    crate::support::compile(source, binding)
 }
 
 /// Evaluates `outputs` of a surface shader at points given by columns.

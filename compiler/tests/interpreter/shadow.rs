@@ -7,16 +7,9 @@ use std::sync::Arc;
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, Texture};
 use patina_compiler::opt::shadow::{DEFAULT_SAMPLES, tap};
-use patina_compiler::syntax::preprocess::MemoryLoader;
 
 fn program(src: &str) -> CpuProgram {
-    let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(
-        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
-        &Binding::default(),
-    )
-    .unwrap()
+    crate::support::compile(src, &Binding::default())
 }
 
 const N: u32 = 8;

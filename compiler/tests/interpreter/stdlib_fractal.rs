@@ -18,7 +18,6 @@
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
-use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_test_support::Rng;
 /// Perlin's ImprovedNoise.java with the stdlib's one departure (the cell reduced modulo 256 in
 /// float, so that fBm's finer octaves beyond 2^31 keep the period).
@@ -275,13 +274,7 @@ impl Args {
 }
 
 fn program() -> CpuProgram {
-    let checked = patina_compiler::check_source("fractal_test.sl", SHADER, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(
-        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
-        &Binding::default(),
-    )
-    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    crate::support::compile(SHADER, &Binding::default())
 }
 
 /// The five functions at each argument set, evaluated in precision `F`. The parameters are
@@ -589,13 +582,7 @@ impl Args2 {
 }
 
 fn program2() -> CpuProgram {
-    let checked = patina_compiler::check_source("fractal_test2.sl", SHADER2, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(
-        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
-        &Binding::default(),
-    )
-    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    crate::support::compile(SHADER2, &Binding::default())
 }
 
 fn eval2<F: Real>(program: &CpuProgram, args: &[Args2]) -> Vec<[f64; 4]> {

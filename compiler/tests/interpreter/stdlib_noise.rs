@@ -42,13 +42,7 @@ const SHADER: &str = "#include <noise.sl>\n\
     surface t() { Ci = color(improved_noise(P), snoise3(P), noise3(P)); }\n";
 
 fn program() -> CpuProgram {
-    let checked = patina_compiler::check_source("noise_test.sl", SHADER, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(
-        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
-        &Binding::default(),
-    )
-    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    crate::support::compile(SHADER, &Binding::default())
 }
 
 /// (improved_noise, snoise3, noise3) at each point, evaluated in precision `F`.

@@ -15,7 +15,6 @@
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::scalar::Real;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator};
-use patina_compiler::syntax::preprocess::MemoryLoader;
 use patina_test_support::Rng;
 
 /// Midpoint-rule samples per box.
@@ -33,13 +32,7 @@ fn program(expr: &str) -> CpuProgram {
     let src = format!(
         "#include <pattern.sl>\nsurface t() {{ Ci = color({expr}, 0, 0); Oi = color(s + v, t, u); }}\n"
     );
-    let checked = patina_compiler::check_source("shaping_test.sl", &src, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{expr}: {:?}", checked.diagnostics);
-    CpuProgram::compile(
-        &patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()),
-        &Binding::default(),
-    )
-    .unwrap_or_else(|d| panic!("{}: {}", d.code, d.message))
+    crate::support::compile(&src, &Binding::default())
 }
 
 fn eval<F: Real>(expr: &str, args: &[[f64; 4]]) -> Vec<f64> {

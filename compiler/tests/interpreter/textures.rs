@@ -5,13 +5,9 @@ use std::sync::Arc;
 
 use patina_compiler::backend::binding::Binding;
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, Texture};
-use patina_compiler::syntax::preprocess::MemoryLoader;
 
 fn program(src: &str, binding: &Binding) -> CpuProgram {
-    let checked = patina_compiler::check_source("t.sl", src, &MemoryLoader::default());
-    assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
-    CpuProgram::compile(&patina_compiler::opt::Prepared::new(checked.program.shaders[0].clone()), binding)
-        .unwrap()
+    crate::support::compile(src, binding)
 }
 
 /// A 2x2 texture: red, green on the top row; blue, white below.

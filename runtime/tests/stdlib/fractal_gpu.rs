@@ -1,5 +1,5 @@
 //! The standard library's fractal sums (`compiler/stdlib/fractal.sl`) on the GPU: the shader of
-//! `compiler/tests/stdlib_fractal.rs` compiled as a compute kernel by the WGSL backend, against
+//! `compiler/tests/interpreter/stdlib_fractal.rs` compiled as a compute kernel by the WGSL backend, against
 //! the interpreter's f32 mode, with every parameter varying per point: ordinary argument sets
 //! and the extremes (octaves 0 and 30, H 0 and 2, lacunarity 1 and 8, coordinates ±1e4, ±1e6,
 //! ±1e7, ±1e30 and denormals, width 0 and 1e30, offsets 0, ±1e4 and ±1e30).

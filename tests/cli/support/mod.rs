@@ -1,5 +1,5 @@
-//! Shared by the command-line tests: running the built `patina` binary, and scratch directories.
-//! Use it from a test file with `mod support;`; each file uses part of it.
+//! Shared by the root package's tests: running the built `patina` binary, and scratch directories.
+//! A module of the `cli` test binary, included by `library` too; each module uses part of it.
 #![allow(dead_code)]
 
 use std::path::PathBuf;

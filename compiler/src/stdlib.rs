@@ -1,6 +1,8 @@
 //! The standard library's sources, embedded at build time so that `#include <name.sl>` works without
 //! any installed files.
 
+use crate::ir::builtin::BuiltinId;
+
 /// The directory name standard-library files are shown under in diagnostics.
 pub const PREFIX: &str = "<stdlib>";
 
@@ -25,22 +27,22 @@ pub fn source(name: &str) -> Option<&'static str> {
 
 /// The built-in functions whose implementations are written in the language, in
 /// `compiler/stdlib/builtins.sl` (as `__NAME_RESULT` overloaded by parameter types).
-pub const LIBRARY_BUILTINS: &[&str] = &[
-    "noise",
-    "snoise",
-    "pnoise",
-    "cellnoise",
-    "diffuse",
-    "specular",
-    "phong",
-    "specularbrdf",
-    "ctransform",
-    "ptlined",
-    "rotate",
-    "translate",
-    "scale",
-    "determinant",
-    "fresnel",
+pub const LIBRARY_BUILTINS: &[BuiltinId] = &[
+    BuiltinId::Noise,
+    BuiltinId::Snoise,
+    BuiltinId::Pnoise,
+    BuiltinId::Cellnoise,
+    BuiltinId::Diffuse,
+    BuiltinId::Specular,
+    BuiltinId::Phong,
+    BuiltinId::SpecularBrdf,
+    BuiltinId::CTransform,
+    BuiltinId::Ptlined,
+    BuiltinId::Rotate,
+    BuiltinId::Translate,
+    BuiltinId::Scale,
+    BuiltinId::Determinant,
+    BuiltinId::Fresnel,
 ];
 
 /// The colour spaces (docs/builtins.md), converted by `compiler/stdlib/builtins.sl` for
@@ -78,7 +80,7 @@ pub fn path(name: &str) -> Option<std::path::PathBuf> {
 
 /// Whether `name` is a built-in written in the language.
 pub fn is_library_builtin(name: &str) -> bool {
-    LIBRARY_BUILTINS.contains(&name)
+    BuiltinId::from_name(name).is_some_and(|id| LIBRARY_BUILTINS.contains(&id))
 }
 
 /// Whether any file in `sources` contains the name of a library built-in, or of a colour space
@@ -89,7 +91,7 @@ pub fn mentions_library_builtins(sources: &crate::source::SourceMap) -> bool {
     // The library's own modules call their functions directly, and mention `noise` in comments.
     sources.files().filter(|(_, file)| !file.name.starts_with(PREFIX)).any(|(_, file)| {
         let text = file.text.as_bytes();
-        LIBRARY_BUILTINS.iter().chain(&COLOUR_SPACES[1..]).any(|name| {
+        LIBRARY_BUILTINS.iter().map(|id| id.name()).chain(COLOUR_SPACES[1..].iter().copied()).any(|name| {
             file.text.match_indices(name).any(|(at, _)| {
                 let end = at + name.len();
                 (at == 0 || !is_word(text[at - 1])) && (end == text.len() || !is_word(text[end]))

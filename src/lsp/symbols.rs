@@ -79,7 +79,7 @@ impl Symbols {
                         index.push(expr.span, Referent::Variable(shader.local(*id).span), false);
                     }
                     ExprKind::Global(g) => index.push(expr.span, Referent::Global(g), false),
-                    ExprKind::Builtin(b, _) => index.call(sources, expr.span, b.name, None),
+                    ExprKind::Builtin(b, _) => index.call(sources, expr.span, b.name(), None),
                     _ => {}
                 }
             }
@@ -127,7 +127,7 @@ impl Symbols {
                         self.push(at, Referent::Function(function.clone()), false);
                     } else if let Some(b) = builtins().overloads(called).first() {
                         // A built-in written in the language, inlined as its implementation.
-                        self.call(sources, *span, b.name, implementation(sources, shader, body));
+                        self.call(sources, *span, b.name(), implementation(sources, shader, body));
                     }
                 }
                 _ => {}

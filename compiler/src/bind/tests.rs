@@ -34,7 +34,7 @@ fn calls(shader: &Shader) -> Vec<String> {
         }
         while let Some(e) = roots.pop() {
             if let ExprKind::Builtin(b, _) = &shader.expr(e).kind {
-                out.push(b.name.to_string());
+                out.push(b.name().to_string());
             }
             shader.expr(e).kind.for_each_operand(|o| roots.push(o));
         }

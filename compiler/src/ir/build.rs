@@ -7,6 +7,7 @@
 //! the overload whose parameters match exactly, and each rate is the join of the operands' rates
 //! refined by the built-in's [`RateRule`].
 
+use super::builtin::BuiltinId;
 use super::types::{Base, Frequency, Rate, Type};
 use super::{BinaryOp, ExprId, ExprKind, Literal, LocalId, Shader, UnaryOp};
 use crate::ir::Expr;
@@ -183,15 +184,15 @@ impl<'s> Builder<'s> {
         self.push(ExprKind::FromSpace { space, value }, ty)
     }
 
-    /// A call of the built-in `name` whose parameters are exactly the argument types.
+    /// A call of the built-in `id` whose parameters are exactly the argument types.
     ///
     /// # Panics
     /// When there is no such overload: the caller built arguments of the wrong types.
-    pub fn call(&mut self, name: &str, args: Vec<ExprId>) -> ExprId {
+    pub fn call(&mut self, id: BuiltinId, args: Vec<ExprId>) -> ExprId {
         let types: Vec<Type> = args.iter().map(|&a| self.ty(a)).collect();
-        let Some(b) = builtins::find(name, &types) else {
+        let Some(b) = builtins::find(id, &types) else {
             let list: Vec<String> = types.iter().map(Type::to_string).collect();
-            panic!("no built-in `{name}({})`", list.join(", "));
+            panic!("no built-in `{id}({})`", list.join(", "));
         };
         self.push(ExprKind::Builtin(b, args), b.ret)
     }

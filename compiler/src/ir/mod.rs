@@ -6,6 +6,7 @@
 //! rate and one span. Expressions are pure; every effect is a statement.
 
 pub mod build;
+pub mod builtin;
 pub mod stores;
 pub mod types;
 pub mod verify;

@@ -14,6 +14,7 @@ use std::fmt;
 
 use smol_str::SmolStr;
 
+use super::builtin::BuiltinId;
 use super::types::{Base, Frequency, Rate, Type};
 use super::{
     BinaryOp, Block, ExprId, ExprKind, Input, Literal, LocalId, LocalKind, Place, Shader, Stmt, UnaryOp,
@@ -286,9 +287,14 @@ fn element(ty: Type) -> Option<Type> {
 
 /// Whether a call is one `opt::derivs` replaces (its `is_consumer`).
 fn is_derivative(b: &Builtin) -> bool {
-    match b.name {
-        "Du" | "Dv" | "Deriv" | "filterwidth" | "area" | "calculatenormal" => true,
-        "filterstep" => b.params.len() == 2,
+    match b.id {
+        BuiltinId::Du
+        | BuiltinId::Dv
+        | BuiltinId::Deriv
+        | BuiltinId::FilterWidth
+        | BuiltinId::Area
+        | BuiltinId::CalculateNormal => true,
+        BuiltinId::FilterStep => b.params.len() == 2,
         _ => false,
     }
 }
@@ -299,14 +305,14 @@ fn is_derivative(b: &Builtin) -> bool {
 fn expanded_lookup(shader: &Shader, b: &Builtin, args: &[ExprId]) -> bool {
     let positional = b.params.len().min(args.len());
     let has = |name| globals::lookup(name, shader.kind, shader.stanford).is_some();
-    match b.name {
-        "texture" | "texture3d" => match positional {
+    match b.id {
+        BuiltinId::Texture | BuiltinId::Texture3d => match positional {
             1 => has("s") && has("t"),
             2 | 3 | 9 => true,
             _ => false,
         },
-        "environment" => matches!(positional, 2 | 5),
-        "shadow" => positional >= 2,
+        BuiltinId::Environment => matches!(positional, 2 | 5),
+        BuiltinId::Shadow => positional >= 2,
         _ => false,
     }
 }
@@ -762,7 +768,7 @@ impl Verifier<'_> {
         }
         if let Some(rest_ty) = b.rest {
             // `printf` and `format` take values of any type, checked against the format.
-            if !matches!(b.name, "printf" | "format")
+            if !matches!(b.id, BuiltinId::Printf | BuiltinId::Format)
                 && let Some(&bad) = rest.iter().find(|&&a| self.ty(a) != rest_ty)
             {
                 return Err(format!(
@@ -774,12 +780,12 @@ impl Verifier<'_> {
             }
             return Ok(());
         }
-        if builtins::options(b.name).is_none() {
+        if builtins::options(b.id).is_none() {
             return Err(format!("{n} arguments for `{}`", b.signature));
         }
         // Optional `"name", value` pairs.
         if !rest.len().is_multiple_of(2) {
-            return Err(format!("an option of `{}` without its value", b.name));
+            return Err(format!("an option of `{}` without its value", b.id));
         }
         for pair in rest.chunks_exact(2) {
             if !matches!(self.shader.expr(pair[0]).kind, ExprKind::Literal(Literal::String(_))) {
@@ -1011,7 +1017,7 @@ impl Verifier<'_> {
             let ExprKind::Builtin(b, args) = &e.kind else { continue };
             let left = if is_derivative(b) {
                 self.pass.no_derivatives()
-            } else if b.name == "shadow" {
+            } else if b.id == BuiltinId::Shadow {
                 self.pass.no_shadows() && expanded_lookup(s, b, args)
             } else {
                 self.pass.no_textures() && expanded_lookup(s, b, args)
@@ -1121,7 +1127,7 @@ fn describe(kind: &ExprKind) -> String {
         ExprKind::FromSpace { space, value } => format!("(e{} from \"{space}\")", value.0),
         ExprKind::Index(a, i) => format!("(e{}[e{}])", a.0, i.0),
         ExprKind::Select(c, a, b) => format!("(e{} ? e{} : e{})", c.0, a.0, b.0),
-        ExprKind::Builtin(b, args) => format!("(`{}`({}))", b.name, ids(args)),
+        ExprKind::Builtin(b, args) => format!("(`{}`({}))", b.id, ids(args)),
         ExprKind::Seed(Input::Global(g), axis) => format!("(seed of `{}` along {axis:?})", g.name),
         ExprKind::Seed(Input::Param(l), axis) => format!("(seed of l{} along {axis:?})", l.0),
     }

@@ -35,6 +35,7 @@
 
 use super::textures::{constant, option};
 use crate::ir::build::Builder;
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::Type;
 use crate::ir::{BinaryOp, ExprId, ExprKind, Shader};
 
@@ -56,7 +57,7 @@ struct Options {
 pub(crate) fn expand(shader: &mut Shader) {
     let lookups: Vec<ExprId> = (0..shader.exprs.len() as u32)
         .map(ExprId)
-        .filter(|id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if b.name == "shadow"))
+        .filter(|id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if b.id == BuiltinId::Shadow))
         .collect();
     for id in lookups {
         let span = shader.expr(id).span;
@@ -120,8 +121,8 @@ fn lookup(b: &mut Builder, texture: ExprId, p: ExprId, options: &Options) -> Exp
     let float =
         |b: &mut Builder, e: ExprId| if b.ty(e) == Type::FLOAT { e } else { b.convert(e, Type::FLOAT) };
     let (zero_i, one_i) = (b.int(0), b.int(1));
-    let width = b.call("__texsize2d", vec![texture, zero_i]);
-    let height = b.call("__texsize2d", vec![texture, one_i]);
+    let width = b.call(BuiltinId::Texsize2d, vec![texture, zero_i]);
+    let height = b.call(BuiltinId::Texsize2d, vec![texture, one_i]);
     // The depth rows, and the matrix row below them.
     let rows = b.binary(BinaryOp::Sub, height, one_i);
     let width_f = b.convert(width, Type::FLOAT);
@@ -129,7 +130,7 @@ fn lookup(b: &mut Builder, texture: ExprId, p: ExprId, options: &Options) -> Exp
     let point: Vec<ExprId> = (0..3).map(|i| b.index(p, i)).collect();
     let row = |b: &mut Builder, i: i32| {
         let column = b.int(i);
-        let m = b.call("__texel2d", vec![texture, column, rows]);
+        let m = b.call(BuiltinId::Texel2d, vec![texture, column, rows]);
         let mut sum = None;
         for c in 0..4 {
             let mc = b.index(m, c);
@@ -174,7 +175,7 @@ fn lookup(b: &mut Builder, texture: ExprId, p: ExprId, options: &Options) -> Exp
         Some(bias) => float(b, bias),
         None => {
             let column = b.int(4);
-            let texel = b.call("__texel2d", vec![texture, column, rows]);
+            let texel = b.call(BuiltinId::Texel2d, vec![texture, column, rows]);
             b.index(texel, 0)
         }
     };
@@ -188,18 +189,18 @@ fn lookup(b: &mut Builder, texture: ExprId, p: ExprId, options: &Options) -> Exp
             let offset = b.binary(BinaryOp::Mul, spread, o);
             let c = b.binary(BinaryOp::Add, c, offset);
             // Clamped so that the conversion to int is exact on every backend.
-            let c = b.call("clamp", vec![c, lo, hi]);
+            let c = b.call(BuiltinId::Clamp, vec![c, lo, hi]);
             let ge = b.binary(BinaryOp::Ge, c, zero);
             let lt = b.binary(BinaryOp::Lt, c, one);
             let inside = b.binary(BinaryOp::And, ge, lt);
             let scaled = b.binary(BinaryOp::Mul, c, size_f);
-            let floor = b.call("floor", vec![scaled]);
+            let floor = b.call(BuiltinId::Floor, vec![scaled]);
             let i = b.convert(floor, Type::INT);
             (wrap(b, i, size), inside)
         };
         let (x, inside_x) = coordinate(b, s, ox, width, width_f);
         let (y, inside_y) = coordinate(b, t, oy, rows, rows_f);
-        let stored = b.call("__texel2d", vec![texture, x, y]);
+        let stored = b.call(BuiltinId::Texel2d, vec![texture, x, y]);
         let stored = b.index(stored, 0);
         let behind = b.binary(BinaryOp::Gt, reach, stored);
         let inside = b.binary(BinaryOp::And, inside_x, inside_y);

@@ -54,6 +54,7 @@
 //! rate.
 
 use crate::ir::build::Builder;
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Base, Type};
 use crate::ir::{BinaryOp, ExprId, ExprKind, Literal, Shader};
 use crate::sema::globals;
@@ -65,26 +66,26 @@ pub(crate) fn expand(shader: &mut Shader) {
         .map(ExprId)
         .filter(|id| {
             matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _)
-                if matches!(b.name, "texture" | "texture3d" | "environment"))
+                if matches!(b.id, BuiltinId::Texture | BuiltinId::Texture3d | BuiltinId::Environment))
         })
         .collect();
     for id in lookups {
         let span = shader.expr(id).span;
-        let (args, options, name) = match &shader.expr(id).kind {
+        let (args, options, lookup) = match &shader.expr(id).kind {
             // The positional arguments; optional "name", value pairs may follow them.
             ExprKind::Builtin(b, args) => {
                 let n = b.params.len().min(args.len());
-                (args[..n].to_vec(), args[n..].to_vec(), b.name)
+                (args[..n].to_vec(), args[n..].to_vec(), b.id)
             }
             _ => continue,
         };
-        let three_d = name == "texture3d";
+        let three_d = lookup == BuiltinId::Texture3d;
         let ret = shader.expr(id).ty;
         let rate = shader.expr(id).rate;
         let first_new = shader.exprs.len();
         let mut b = Builder::new(shader, span);
         let (texture, channel) = channel_selection(b.shader, args[0]);
-        let rgba = if name == "environment" {
+        let rgba = if lookup == BuiltinId::Environment {
             let Some(direction) = environment_direction(&mut b, &args) else { continue };
             let footprint = Footprint {
                 width: option(b.shader, &options, FOOTPRINT),
@@ -138,7 +139,9 @@ const FOOTPRINT: &str = "__footprint";
 pub(crate) fn footprints(shader: &mut Shader) {
     let lookups: Vec<ExprId> = (0..shader.exprs.len() as u32)
         .map(ExprId)
-        .filter(|id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if b.name == "environment"))
+        .filter(
+            |id| matches!(&shader.expr(*id).kind, ExprKind::Builtin(b, _) if b.id == BuiltinId::Environment),
+        )
         .collect();
     for id in lookups {
         let span = shader.expr(id).span;
@@ -148,16 +151,16 @@ pub(crate) fn footprints(shader: &mut Shader) {
         let width = match n {
             2 => {
                 let point = b.convert(args[1], Type::of(Base::Point));
-                let area = b.call("area", vec![point]);
-                b.call("sqrt", vec![area])
+                let area = b.call(BuiltinId::Area, vec![point]);
+                b.call(BuiltinId::Sqrt, vec![area])
             }
             5 => {
                 let distance = |b: &mut Builder, k: usize| {
                     let d = b.binary(BinaryOp::Sub, args[k], args[1]);
-                    b.call("length", vec![d])
+                    b.call(BuiltinId::Length, vec![d])
                 };
                 let (d2, d3, d4) = (distance(&mut b, 2), distance(&mut b, 3), distance(&mut b, 4));
-                b.call("max", vec![d2, d3, d4])
+                b.call(BuiltinId::Max, vec![d2, d3, d4])
             }
             _ => continue,
         };
@@ -243,12 +246,12 @@ pub(crate) fn axis(
     three_d: bool,
 ) -> (ExprId, ExprId, ExprId) {
     let a = b.int(which);
-    let size = b.call(if three_d { "__texsize3d" } else { "__texsize2d" }, vec![texture, a]);
+    let size = b.call(if three_d { BuiltinId::Texsize3d } else { BuiltinId::Texsize2d }, vec![texture, a]);
     let size_f = b.convert(size, Type::FLOAT);
     let half = b.float(0.5);
     let scaled = b.binary(BinaryOp::Mul, coord, size_f);
     let x = b.binary(BinaryOp::Sub, scaled, half);
-    let x0 = b.call("floor", vec![x]);
+    let x0 = b.call(BuiltinId::Floor, vec![x]);
     let fraction = b.binary(BinaryOp::Sub, x, x0);
     let i0 = b.convert(x0, Type::INT);
     let i0 = wrap(b, i0, size);
@@ -266,7 +269,7 @@ pub(crate) fn wrap(b: &mut Builder, i: ExprId, n: ExprId) -> ExprId {
 }
 
 fn mix(b: &mut Builder, x: ExprId, y: ExprId, t: ExprId) -> ExprId {
-    b.call("mix", vec![x, y, t])
+    b.call(BuiltinId::Mix, vec![x, y, t])
 }
 
 /// The bilinear filter of a 2D texture at (s, t) = (`c[0]`, `c[1]`), wrapping on both axes: the
@@ -283,7 +286,7 @@ pub(crate) fn split(b: &mut Builder, coord: ExprId, size: ExprId) -> (ExprId, Ex
     let half = b.float(0.5);
     let scaled = b.binary(BinaryOp::Mul, coord, size);
     let x = b.binary(BinaryOp::Sub, scaled, half);
-    let x0 = b.call("floor", vec![x]);
+    let x0 = b.call(BuiltinId::Floor, vec![x]);
     let fraction = b.binary(BinaryOp::Sub, x, x0);
     let i0 = b.convert(x0, Type::INT);
     let one = b.int(1);
@@ -295,7 +298,7 @@ pub(crate) fn split(b: &mut Builder, coord: ExprId, size: ExprId) -> (ExprId, Ex
 /// weights `x[2]`, `y[2]` of the second of each pair.
 pub(crate) fn bilinear(b: &mut Builder, texture: ExprId, x: [ExprId; 3], y: [ExprId; 3]) -> ExprId {
     let ([x0, x1, fx], [y0, y1, fy]) = (x, y);
-    let mut texel = |x, y| b.call("__texel2d", vec![texture, x, y]);
+    let mut texel = |x, y| b.call(BuiltinId::Texel2d, vec![texture, x, y]);
     let (c00, c10, c01, c11) = (texel(x0, y0), texel(x1, y0), texel(x0, y1), texel(x1, y1));
     let top = mix(b, c00, c10, fx);
     let bottom = mix(b, c01, c11, fx);
@@ -325,8 +328,8 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let half = b.float(0.5);
     let one_f = b.float(1.0);
     let (zero, one, two, three) = (b.int(0), b.int(1), b.int(2), b.int(3));
-    let w = b.call("__texsize2d", vec![texture, zero]);
-    let h = b.call("__texsize2d", vec![texture, one]);
+    let w = b.call(BuiltinId::Texsize2d, vec![texture, zero]);
+    let h = b.call(BuiltinId::Texsize2d, vec![texture, one]);
     let w2 = b.binary(BinaryOp::Mul, w, two);
     let h3 = b.binary(BinaryOp::Mul, h, three);
     let plain_cube = b.binary(BinaryOp::Eq, w2, h3);
@@ -347,19 +350,20 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let around = b.binary(BinaryOp::Gt, r2, zero_f);
     let nonzero = b.binary(BinaryOp::Gt, len2, zero_f);
     let minus_z = b.neg(z);
-    let azimuth = b.call("atan", vec![x, minus_z]);
+    let azimuth = b.call(BuiltinId::Atan, vec![x, minus_z]);
     let inv_two_pi = b.float(1.0 / (2.0 * std::f64::consts::PI));
     let s = b.binary(BinaryOp::Mul, azimuth, inv_two_pi);
     let s = b.binary(BinaryOp::Add, s, half);
     let s = b.select(around, s, half);
-    let r = b.call("sqrt", vec![r2]);
-    let polar = b.call("atan", vec![r, y]);
+    let r = b.call(BuiltinId::Sqrt, vec![r2]);
+    let polar = b.call(BuiltinId::Atan, vec![r, y]);
     let inv_pi = b.float(1.0 / std::f64::consts::PI);
     let t = b.binary(BinaryOp::Mul, polar, inv_pi);
     let t = b.select(nonzero, t, half);
 
     // Cube-map face and face coordinates.
-    let (ax, ay, az) = (b.call("abs", vec![x]), b.call("abs", vec![y]), b.call("abs", vec![z]));
+    let (ax, ay, az) =
+        (b.call(BuiltinId::Abs, vec![x]), b.call(BuiltinId::Abs, vec![y]), b.call(BuiltinId::Abs, vec![z]));
     let x_ge_y = b.binary(BinaryOp::Ge, ax, ay);
     let x_ge_z = b.binary(BinaryOp::Ge, ax, az);
     let x_major = b.binary(BinaryOp::And, x_ge_y, x_ge_z);
@@ -386,7 +390,7 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let tc = pick(b, minus_y, tcy, minus_y);
     let major = pick(b, ax, ay, az);
     let tiny = b.float(1e-30);
-    let major = b.call("max", vec![major, tiny]);
+    let major = b.call(BuiltinId::Max, vec![major, tiny]);
     let to_unit = |b: &mut Builder, c: ExprId| {
         let q = b.binary(BinaryOp::Div, c, major);
         let q = b.binary(BinaryOp::Add, q, one_f);
@@ -415,9 +419,9 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let rows0 = b.select(is_cube, size, level0_h);
     let h0_f = b.convert(rows0, Type::FLOAT);
     let base = b.float(2.0);
-    let top_level = b.call("log", vec![h0_f, base]);
+    let top_level = b.call(BuiltinId::Log, vec![h0_f, base]);
     let top_level = b.binary(BinaryOp::Add, top_level, half);
-    let top_level = b.call("floor", vec![top_level]);
+    let top_level = b.call(BuiltinId::Floor, vec![top_level]);
     // The footprint in level-0 texels: an angle (the width over |D|) times the texels per radian
     // around the equator (a lat-long map's width, a cube's four faces), scaled by "width", plus
     // "blur" times those texels.
@@ -426,8 +430,8 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
     let equator = b.convert(equator, Type::FLOAT);
     let mut texels = zero_f;
     if let Some(width) = footprint.width {
-        let length = b.call("sqrt", vec![len2]);
-        let length = b.call("max", vec![length, tiny]);
+        let length = b.call(BuiltinId::Sqrt, vec![len2]);
+        let length = b.call(BuiltinId::Max, vec![length, tiny]);
         let angle = b.binary(BinaryOp::Div, width, length);
         let per_radian = b.binary(BinaryOp::Mul, equator, inv_two_pi);
         texels = b.binary(BinaryOp::Mul, angle, per_radian);
@@ -441,17 +445,17 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
         let blur = b.binary(BinaryOp::Mul, blur, equator);
         texels = b.binary(BinaryOp::Add, texels, blur);
     }
-    let texels = b.call("max", vec![texels, one_f]);
-    let lod = b.call("log", vec![texels, base]);
-    let lod = b.call("min", vec![lod, top_level]);
+    let texels = b.call(BuiltinId::Max, vec![texels, one_f]);
+    let lod = b.call(BuiltinId::Log, vec![texels, base]);
+    let lod = b.call(BuiltinId::Min, vec![lod, top_level]);
     let lod = b.select(has_chain, lod, zero_f);
-    let lod_floor = b.call("floor", vec![lod]);
+    let lod_floor = b.call(BuiltinId::Floor, vec![lod]);
     let between = b.binary(BinaryOp::Sub, lod, lod_floor);
     let top_level = b.convert(top_level, Type::INT);
     let l0 = b.convert(lod_floor, Type::INT);
-    let l0 = b.call("clamp", vec![l0, zero, top_level]);
+    let l0 = b.call(BuiltinId::Clamp, vec![l0, zero, top_level]);
     let l1 = b.binary(BinaryOp::Add, l0, one);
-    let l1 = b.call("min", vec![l1, top_level]);
+    let l1 = b.call(BuiltinId::Min, vec![l1, top_level]);
     let l1 = b.select(has_chain, l1, l0);
 
     // One filter per level: lat-long (s wraps over the level's width, t clamps to its height, its
@@ -480,13 +484,13 @@ fn environment(b: &mut Builder, texture: ExprId, d: ExprId, footprint: Footprint
         let last_across = b.binary(BinaryOp::Sub, across, one);
         let last_down = b.binary(BinaryOp::Sub, down, one);
         let column_of = |b: &mut Builder, i: ExprId| {
-            let clamped = b.call("clamp", vec![i, zero, last_across]);
+            let clamped = b.call(BuiltinId::Clamp, vec![i, zero, last_across]);
             let in_face = b.binary(BinaryOp::Add, clamped, ox);
             let wrapped = wrap(b, i, across);
             b.select(is_cube, in_face, wrapped)
         };
         let row_of = |b: &mut Builder, i: ExprId| {
-            let clamped = b.call("clamp", vec![i, zero, last_down]);
+            let clamped = b.call(BuiltinId::Clamp, vec![i, zero, last_down]);
             b.binary(BinaryOp::Add, clamped, row_offset)
         };
         let (x0, x1) = (column_of(b, x0), column_of(b, x1));
@@ -503,7 +507,7 @@ fn filter3(b: &mut Builder, texture: ExprId, c: &[ExprId]) -> ExprId {
     let (y0, y1, fy) = axis(b, texture, 1, c[1], true);
     let (z0, z1, fz) = axis(b, texture, 2, c[2], true);
     let plane = |b: &mut Builder, z| {
-        let mut texel = |x, y| b.call("__texel3d", vec![texture, x, y, z]);
+        let mut texel = |x, y| b.call(BuiltinId::Texel3d, vec![texture, x, y, z]);
         let (c00, c10, c01, c11) = (texel(x0, y0), texel(x1, y0), texel(x0, y1), texel(x1, y1));
         let top = mix(b, c00, c10, fx);
         let bottom = mix(b, c01, c11, fx);

@@ -44,7 +44,11 @@ fn texture_options_are_checked_and_kept_after_the_positional_arguments() {
         .exprs
         .iter()
         .find_map(|e| match &e.kind {
-            patina_compiler::ir::ExprKind::Builtin(b, args) if b.name == "shadow" => Some((b, args.clone())),
+            patina_compiler::ir::ExprKind::Builtin(b, args)
+                if b.id == patina_compiler::ir::builtin::BuiltinId::Shadow =>
+            {
+                Some((b, args.clone()))
+            }
             _ => None,
         })
         .expect("a shadow call");
@@ -134,7 +138,7 @@ fn bake_is_accepted_as_a_no_op_with_a_warning() {
         !shader
             .exprs
             .iter()
-            .any(|e| matches!(&e.kind, patina_compiler::ir::ExprKind::Builtin(b, _) if b.name == "bake"))
+            .any(|e| matches!(&e.kind, patina_compiler::ir::ExprKind::Builtin(b, _) if b.name() == "bake"))
     );
     let (errors, _, text) = run("surface s() {\n    bake(1, s, t, Ci);\n}\n");
     assert_eq!(errors, ["E0503"], "{text}");
@@ -221,7 +225,11 @@ fn string_variables_stored_in_straight_line_code_are_known_where_read() {
         .exprs
         .iter()
         .find_map(|e| match &e.kind {
-            patina_compiler::ir::ExprKind::Builtin(b, args) if b.name == "match" => Some(args[1]),
+            patina_compiler::ir::ExprKind::Builtin(b, args)
+                if b.id == patina_compiler::ir::builtin::BuiltinId::Match =>
+            {
+                Some(args[1])
+            }
             _ => None,
         })
         .expect("a match call");

@@ -12,6 +12,7 @@ use patina_compiler::backend::binding::{Binding, BoundLight, LightBinding};
 use patina_compiler::backend::cpu::{CpuProgram, Evaluator, SlotKind};
 use patina_compiler::backend::object::{Beside, CompiledObject, HostPart, compile_object};
 use patina_compiler::backend::wgsl::{GpuProgram, Lowering};
+use patina_compiler::ir::builtin::BuiltinId;
 use patina_compiler::ir::types::{Base, Type};
 use patina_compiler::ir::{ExprKind, Literal, Shader};
 use patina_compiler::opt::Prepared;
@@ -214,10 +215,12 @@ pub fn surface_reads(shader: &Shader) -> Vec<String> {
         .exprs
         .iter()
         .filter_map(|e| match &e.kind {
-            ExprKind::Builtin(b, args) if b.name == "surface" => match &shader.expr(*args.first()?).kind {
-                ExprKind::Literal(Literal::String(s)) => Some(s.to_string()),
-                _ => None,
-            },
+            ExprKind::Builtin(b, args) if b.id == BuiltinId::Surface => {
+                match &shader.expr(*args.first()?).kind {
+                    ExprKind::Literal(Literal::String(s)) => Some(s.to_string()),
+                    _ => None,
+                }
+            }
             _ => None,
         })
         .collect();

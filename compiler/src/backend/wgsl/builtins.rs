@@ -13,12 +13,14 @@ use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
 
 use super::body::{Translator, Value};
 use crate::diag::{Code, Diagnostic};
+use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind, Literal};
 use crate::sema::builtins::Builtin;
 
 impl Translator<'_> {
-    /// A call of a built-in.
+    /// A call of a built-in: every built-in has its case here (the match on its id is
+    /// exhaustive), those that never reach the backend an internal error.
     pub(super) fn builtin(
         &mut self,
         b: &'static Builtin,
@@ -28,15 +30,13 @@ impl Translator<'_> {
         let e = self.shader.expr(id);
         let (ret, span) = (e.ty, e.span);
         let types: Vec<Type> = args.iter().map(|a| self.shader.expr(*a).ty).collect();
-        if b.name == "integrate" {
+        if b.id == B::Integrate {
             return self.integrate(args[0], ret);
         }
-        if b.name.starts_with("__tex") {
+        if let Some(fetch) = super::textures::Fetch::of(b.id) {
             // The texture argument is a binding, not a value: only the coordinates are computed.
             let coords: Vec<Value> = args[1..].iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
-            if let Some(r) = self.texel_builtin(b.name, args, &coords) {
-                return r;
-            }
+            return self.texel_builtin(fetch, args, &coords);
         }
         // Strings are compile-time values: string arguments are read by `fold_string` where they
         // are used, and a zero stands in for them here.
@@ -54,17 +54,17 @@ impl Translator<'_> {
         };
         // The value of a built-in without one (`setcomp`, `printf`, ...): never read.
         let void = |this: &mut Self| this.float(0.0);
-        Ok(match b.name {
-            "radians" => self.scale(v(0), std::f64::consts::PI / 180.0),
-            "degrees" => self.scale(v(0), 180.0 / std::f64::consts::PI),
-            "sin" => self.math1(M::Sin, v(0)),
-            "cos" => self.math1(M::Cos, v(0)),
-            "tan" => self.math1(M::Tan, v(0)),
-            "asin" => self.math1(M::Asin, v(0)),
-            "acos" => self.math1(M::Acos, v(0)),
-            "atan" if args.len() == 1 => self.math1(M::Atan, v(0)),
-            "atan" => self.math2(M::Atan2, v(0), v(1)),
-            "pow" => {
+        Ok(match b.id {
+            B::Radians => self.scale(v(0), std::f64::consts::PI / 180.0),
+            B::Degrees => self.scale(v(0), 180.0 / std::f64::consts::PI),
+            B::Sin => self.math1(M::Sin, v(0)),
+            B::Cos => self.math1(M::Cos, v(0)),
+            B::Tan => self.math1(M::Tan, v(0)),
+            B::Asin => self.math1(M::Asin, v(0)),
+            B::Acos => self.math1(M::Acos, v(0)),
+            B::Atan if args.len() == 1 => self.math1(M::Atan, v(0)),
+            B::Atan => self.math2(M::Atan2, v(0), v(1)),
+            B::Pow => {
                 let y = wide(self, 1);
                 if self.never_negative(args[0], 0) {
                     // The negative-base case cannot arise: WGSL's pow is the interpreter's here.
@@ -73,33 +73,33 @@ impl Translator<'_> {
                     self.pow(v(0), y, n)
                 }
             }
-            "exp" => self.math1(M::Exp, v(0)),
-            "sqrt" => self.math1(M::Sqrt, v(0)),
+            B::Exp => self.math1(M::Exp, v(0)),
+            B::Sqrt => self.math1(M::Sqrt, v(0)),
             // 1 / sqrt(x), as the interpreter (WGSL's inverseSqrt may differ by 2 ulp).
-            "inversesqrt" if self.fast() => self.math1(M::InverseSqrt, v(0)),
-            "inversesqrt" => {
+            B::InverseSqrt if self.fast() => self.math1(M::InverseSqrt, v(0)),
+            B::InverseSqrt => {
                 let one = self.float(1.0);
                 let root = self.math1(M::Sqrt, v(0));
                 self.div(one, root)
             }
-            "log" if args.len() == 1 => self.math1(M::Log, v(0)),
-            "log" => {
+            B::Log if args.len() == 1 => self.math1(M::Log, v(0)),
+            B::Log => {
                 let (x, base) = (self.math1(M::Log, v(0)), self.math1(M::Log, v(1)));
                 self.binary(Op::Divide, x, base)
             }
-            "mod" => {
+            B::Mod => {
                 // a - b * floor(a / b), as the interpreter (WGSL's `%` truncates instead).
                 let b = wide(self, 1);
                 self.modulo(v(0), b)
             }
-            "abs" if ret.base == Base::Uint => v(0),
-            "abs" => self.math1(M::Abs, v(0)),
-            "sign" => self.sign(v(0)),
-            "floor" => self.math1(M::Floor, v(0)),
-            "ceil" => self.math1(M::Ceil, v(0)),
-            "round" => self.math1(M::Round, v(0)),
-            "min" | "max" => {
-                let fun = if b.name == "min" { M::Min } else { M::Max };
+            B::Abs if ret.base == Base::Uint => v(0),
+            B::Abs => self.math1(M::Abs, v(0)),
+            B::Sign => self.sign(v(0)),
+            B::Floor => self.math1(M::Floor, v(0)),
+            B::Ceil => self.math1(M::Ceil, v(0)),
+            B::Round => self.math1(M::Round, v(0)),
+            B::Min | B::Max => {
+                let fun = if b.id == B::Min { M::Min } else { M::Max };
                 let mut acc = wide(self, 0);
                 for i in 1..vals.len() {
                     let x = wide(self, i);
@@ -107,37 +107,37 @@ impl Translator<'_> {
                 }
                 acc
             }
-            "clamp" => {
+            B::Clamp => {
                 let (lo, hi) = (wide(self, 1), wide(self, 2));
                 // min(max(x, lo), hi), as the interpreter (WGSL's clamp leaves lo > hi open).
                 self.clamp_to(v(0), lo, hi)
             }
-            "clamp01" => {
+            B::Clamp01 => {
                 let (zero, one) = (self.float(0.0), self.float(1.0));
                 let (zero, one) = (self.splat(zero, n), self.splat(one, n));
                 self.clamp_to(v(0), zero, one)
             }
-            "mix" => {
+            B::Mix => {
                 // a * (1 - t) + b * t, WGSL's formula.
                 let t = wide(self, 2);
                 self.math3(M::Mix, v(0), v(1), t)
             }
-            "step" => {
+            B::Step => {
                 let edge = wide(self, 0);
                 self.step(edge, v(1))
             }
-            "smoothstep" => self.smoothstep(v(0), v(1), v(2)),
-            "filterstep" if args.len() == 3 => self.filterstep_explicit(v(0), v(1), v(2)),
-            "select" => match types[1].base {
+            B::SmoothStep => self.smoothstep(v(0), v(1), v(2)),
+            B::FilterStep if args.len() == 3 => self.filterstep_explicit(v(0), v(1), v(2)),
+            B::Select => match types[1].base {
                 Base::Matrix3 if !types[1].is_array() => self.select_matrix(v(0), v(1), v(2), 3),
                 Base::Matrix4 if !types[1].is_array() => self.select_matrix(v(0), v(1), v(2), 4),
                 _ => self.pick(v(0), v(1), v(2)),
             },
-            "random" | "__uniform_random" => {
+            B::Random | B::UniformRandom => {
                 // The interpreter's hash of the point index (a fixed one for a uniform value) and
                 // the call site (one site per component, numbered in the same order), in u32
                 // arithmetic.
-                let point = if b.name == "random" {
+                let point = if b.id == B::Random {
                     let var = self.mb.private(crate::backend::POINT_INDEX, Type::of(Base::Uint));
                     let p = self.pointer(var);
                     self.load(p)
@@ -158,33 +158,33 @@ impl Translator<'_> {
                 }
             }
             // A GPU has no console: `printf` is left out (sema warns at the call).
-            "printf" => void(self),
-            "xcomp" | "ycomp" | "zcomp" => {
-                let i = ["xcomp", "ycomp", "zcomp"].iter().position(|c| *c == b.name).unwrap_or(0) as u32;
+            B::Printf => void(self),
+            B::XComp | B::YComp | B::ZComp => {
+                let i = [B::XComp, B::YComp, B::ZComp].iter().position(|c| *c == b.id).unwrap_or(0) as u32;
                 self.at(v(0), i)
             }
-            "setxcomp" | "setycomp" | "setzcomp" => {
-                let i = ["setxcomp", "setycomp", "setzcomp"].iter().position(|c| *c == b.name).unwrap_or(0);
+            B::SetXComp | B::SetYComp | B::SetZComp => {
+                let i = [B::SetXComp, B::SetYComp, B::SetZComp].iter().position(|c| *c == b.id).unwrap_or(0);
                 let mut parts = self.parts(v(0), 3);
                 parts[i] = v(1);
                 let new = self.vector(&parts);
                 self.write_output(args[0], new);
                 void(self)
             }
-            "comp" if types[0].base == Base::Matrix4 => self.matrix_component(v(0), v(1), v(2)),
-            "comp" => {
+            B::Comp if types[0].base == Base::Matrix4 => self.matrix_component(v(0), v(1), v(2)),
+            B::Comp => {
                 // The index converted to an integer and clamped into range, as the interpreter.
                 let i = self.float_to_int(v(1));
                 let i = self.clamp_int(i, 0, 2);
                 let i = self.fb.add(Expression::As { expr: i, kind: ScalarKind::Uint, convert: Some(4) });
                 self.fb.add(Expression::Access { base: v(0), index: i })
             }
-            "setcomp" if types[0].base == Base::Matrix4 => {
+            B::SetComp if types[0].base == Base::Matrix4 => {
                 let new = self.matrix_with(v(0), v(1), v(2), v(3));
                 self.write_output(args[0], new);
                 void(self)
             }
-            "setcomp" => {
+            B::SetComp => {
                 // Out-of-range indices change nothing (the interpreter compares each component's
                 // index with the converted one).
                 let i = self.float_to_int(v(1));
@@ -200,22 +200,22 @@ impl Translator<'_> {
                 self.write_output(args[0], new);
                 void(self)
             }
-            "length" => self.length(v(0)),
-            "distance" if self.fast() => self.math2(M::Distance, v(0), v(1)),
-            "distance" => {
+            B::Length => self.length(v(0)),
+            B::Distance if self.fast() => self.math2(M::Distance, v(0), v(1)),
+            B::Distance => {
                 let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
                 let d = self.zip_parts(Op::Subtract, &a, &b);
                 self.length_parts(&d)
             }
-            "normalize" => self.normalize(v(0)),
-            "dot" if self.fast() && types[0].base.components() > 1 => self.math2(M::Dot, v(0), v(1)),
-            "dot" => {
+            B::Normalize => self.normalize(v(0)),
+            B::Dot if self.fast() && types[0].base.components() > 1 => self.math2(M::Dot, v(0), v(1)),
+            B::Dot => {
                 let k = types[0].base.components();
                 let (a, b) = (self.parts(v(0), k), self.parts(v(1), k));
                 self.dot_parts(&a, &b)
             }
-            "cross" if self.fast() => self.math2(M::Cross, v(0), v(1)),
-            "cross" => {
+            B::Cross if self.fast() => self.math2(M::Cross, v(0), v(1)),
+            B::Cross => {
                 let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
                 let mut term = |i: usize, j: usize| {
                     let p = self.mul(a[i], b[j]);
@@ -225,8 +225,8 @@ impl Translator<'_> {
                 let c = [term(1, 2), term(2, 0), term(0, 1)];
                 self.vector(&c)
             }
-            "rgb" => self.xyz(v(0)),
-            "faceforward" => {
+            B::Rgb => self.xyz(v(0)),
+            B::FaceForward => {
                 let nref = match vals.get(2) {
                     Some(r) => *r,
                     None => self.global_value("Ng").unwrap_or(v(0)),
@@ -242,26 +242,26 @@ impl Translator<'_> {
                 let neg = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: v(0) });
                 self.pick(facing, v(0), neg)
             }
-            "reflect" => self.reflect(v(0), v(1)),
-            "refract" => self.refract(v(0), v(1), v(2)),
-            "ambient" => self.ambient()?,
-            "lightsource" => self.lightsource(args, span)?,
-            "surface" => self.surface_message(args, span)?,
-            "transform" | "vtransform" | "ntransform" => self.transform(b.name, args, &vals, ret, span)?,
-            "transpose" => self.math1(M::Transpose, v(0)),
-            "affine" => {
+            B::Reflect => self.reflect(v(0), v(1)),
+            B::Refract => self.refract(v(0), v(1), v(2)),
+            B::Ambient => self.ambient()?,
+            B::LightSource => self.lightsource(args, span)?,
+            B::Surface => self.surface_message(args, span)?,
+            B::Transform | B::VTransform | B::NTransform => self.transform(b.id, args, &vals, ret, span)?,
+            B::Transpose => self.math1(M::Transpose, v(0)),
+            B::Affine => {
                 let m = self.entries(v(0), 4);
                 let e: Vec<Value> = (0..9).map(|k| m[(k / 3) * 4 + k % 3]).collect();
                 self.matrix(&e, 3)
             }
-            "invert" => {
+            B::Invert => {
                 let k = if types[0].base == Base::Matrix3 { 3 } else { 4 };
                 let m = self.entries(v(0), k);
                 let inv = self.invert_entries(&m, k as usize);
                 self.matrix(&inv, k)
             }
-            "depth" => self.depth(v(0)),
-            "__colour_space" => {
+            B::Depth => self.depth(v(0)),
+            B::ColourSpace => {
                 let Some(name) = self.fold_string(args[0]) else {
                     return Err(Diagnostic::error(
                         Code::NotExecutable,
@@ -273,53 +273,71 @@ impl Translator<'_> {
                 crate::stdlib::check_colour_space(&name, span)?;
                 void(self)
             }
-            "spline" => self.spline(args, &vals, ret, span)?,
-            "match" => self.pattern_match(args, span)?,
-            "concat" => {
+            B::Spline => self.spline(args, &vals, ret, span)?,
+            B::Match => self.pattern_match(args, span)?,
+            B::Concat => {
                 return Err(self.error(
                     span,
                     "a string used as a value (`concat` is folded only where a name is expected)",
                 ));
             }
-            "xyz_screen" => {
+            B::XyzScreen => {
                 // The fragment's window position: the fragment entry point (or a kernel's input
                 // of this name) fills this variable, as the interpreter's input of the same name.
                 let var = self.mb.private(super::entry::SCREEN_POSITION, ret);
                 let p = self.pointer(var);
                 self.load(p)
             }
-            "Du" | "Dv" | "Deriv" | "filterwidth" | "filterstep" | "area" | "calculatenormal" => {
+            B::Du | B::Dv | B::Deriv | B::FilterWidth | B::FilterStep | B::Area | B::CalculateNormal => {
                 return Err(super::internal(
                     span,
                     format!(
                         "internal error: `{}` reached the WGSL backend without being differentiated",
-                        b.name
+                        b.id
                     ),
                 ));
             }
-            name if crate::stdlib::is_library_builtin(name) => {
+            B::Noise
+            | B::Snoise
+            | B::Pnoise
+            | B::Cellnoise
+            | B::Diffuse
+            | B::Specular
+            | B::Phong
+            | B::SpecularBrdf
+            | B::CTransform
+            | B::Ptlined
+            | B::Rotate
+            | B::Translate
+            | B::Scale
+            | B::Determinant
+            | B::Fresnel => {
                 return Err(super::internal(
                     span,
                     format!(
-                        "`{name}` reached the WGSL backend as a built-in; the semantic stage inlines its \
-                         implementation from compiler/stdlib/builtins.sl"
+                        "`{}` reached the WGSL backend as a built-in; the semantic stage inlines its \
+                         implementation from compiler/stdlib/builtins.sl",
+                        b.id
                     ),
                 ));
             }
-            "texture" | "texture3d" | "environment" | "shadow" => {
+            B::Texture | B::Texture3d | B::Environment | B::Shadow => {
                 return Err(super::internal(
                     span,
                     format!(
                         "internal error: `{}` reached the WGSL backend without being expanded (opt::Prepared::new)",
-                        b.name
+                        b.id
                     ),
                 ));
             }
-            _ => {
+            // A string the semantic stage computes (`format` of literals): no call of it remains.
+            B::Format => {
                 return Err(
-                    self.error(span, format!("the built-in `{}` is not available on the GPU yet", b.name))
+                    self.error(span, format!("the built-in `{}` is not available on the GPU yet", b.id))
                 );
             }
+            B::Integrate => unreachable!("summed above, before its argument is lowered"),
+            B::Texel2d | B::Texel3d | B::Texsize2d | B::Texsize3d => unreachable!("fetched above"),
         })
     }
 
@@ -432,11 +450,11 @@ impl Translator<'_> {
             ExprKind::Literal(Literal::Uint(_)) => true,
             ExprKind::Convert(a) => sure(a),
             ExprKind::Local(l) => self.only_initialiser(*l).is_some_and(|value| sure(&value)),
-            ExprKind::Builtin(b, args) => match b.name {
-                "abs" | "sqrt" | "exp" => true,
-                "max" => args.iter().any(sure),
-                "min" => args.iter().all(sure),
-                "clamp" => args.len() == 3 && args[1..].iter().all(sure),
+            ExprKind::Builtin(b, args) => match b.id {
+                B::Abs | B::Sqrt | B::Exp => true,
+                B::Max => args.iter().any(sure),
+                B::Min => args.iter().all(sure),
+                B::Clamp => args.len() == 3 && args[1..].iter().all(sure),
                 _ => false,
             },
             _ => false,

@@ -3,6 +3,7 @@
 //! and `depth`, by the interpreter's rules (`backend/cpu/lower/geometry.rs`), operation for
 //! operation (see `matrices`).
 
+use crate::ir::builtin::BuiltinId;
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, SwizzleComponent as C, VectorSize};
 
 use super::body::{Translator, Value};
@@ -63,15 +64,15 @@ impl Translator<'_> {
     /// to another, by a matrix, and from a space by a matrix.
     pub(super) fn transform(
         &mut self,
-        name: &str,
+        which: BuiltinId,
         args: &[ExprId],
         vals: &[Value],
         ret: Type,
         span: Span,
     ) -> Result<Value, Diagnostic> {
-        let rule = match name {
-            "vtransform" => Rule::Vector,
-            "ntransform" => Rule::Normal,
+        let rule = match which {
+            BuiltinId::VTransform => Rule::Vector,
+            BuiltinId::NTransform => Rule::Normal,
             _ => Rule::of(ret.base),
         };
         let is_string = |this: &Self, i: usize| this.shader.expr(args[i]).ty.base == Base::String;

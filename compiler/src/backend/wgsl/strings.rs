@@ -2,6 +2,7 @@
 //! never reach the GPU. `match` uses the matcher the interpreter uses too (`backend::pattern`),
 //! so the two backends cannot disagree on a pattern.
 
+use crate::ir::builtin::BuiltinId;
 use smol_str::SmolStr;
 
 use super::body::{Translator, Value};
@@ -15,7 +16,7 @@ impl Translator<'_> {
     /// default), or a `concat` of such.
     pub(super) fn fold_string(&self, id: ExprId) -> Option<SmolStr> {
         if let ExprKind::Builtin(b, args) = &self.shader.expr(id).kind
-            && b.name == "concat"
+            && b.id == BuiltinId::Concat
         {
             let mut s = String::new();
             for a in args {

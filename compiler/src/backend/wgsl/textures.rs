@@ -10,40 +10,55 @@ use naga::{
 
 use super::body::{Translator, Value};
 use crate::diag::Diagnostic;
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::Base;
 use crate::ir::{ExprId, ExprKind};
 
+/// A texel-fetch built-in.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(super) enum Fetch {
+    /// `__texel2d` or `__texel3d`: a texel of a texture of this dimension.
+    Texel(ImageDimension),
+    /// `__texsize2d` or `__texsize3d`: a texture's size along an axis.
+    Size(ImageDimension),
+}
+
+impl Fetch {
+    /// The fetch `id` is, if it is one.
+    pub(super) fn of(id: BuiltinId) -> Option<Fetch> {
+        match id {
+            BuiltinId::Texel2d => Some(Fetch::Texel(ImageDimension::D2)),
+            BuiltinId::Texel3d => Some(Fetch::Texel(ImageDimension::D3)),
+            BuiltinId::Texsize2d => Some(Fetch::Size(ImageDimension::D2)),
+            BuiltinId::Texsize3d => Some(Fetch::Size(ImageDimension::D3)),
+            _ => None,
+        }
+    }
+}
+
 impl Translator<'_> {
-    /// The texel-fetch built-ins (`coords`: the values of the arguments after the texture);
-    /// `None` for any other name.
+    /// A texel-fetch built-in (`coords`: the values of the arguments after the texture).
     pub(super) fn texel_builtin(
         &mut self,
-        name: &str,
+        fetch: Fetch,
         args: &[ExprId],
         coords: &[Value],
-    ) -> Option<Result<Value, Diagnostic>> {
-        let dim = match name {
-            "__texel2d" => ImageDimension::D2,
-            "__texel3d" => ImageDimension::D3,
-            "__texsize2d" | "__texsize3d" => {
+    ) -> Result<Value, Diagnostic> {
+        let dim = match fetch {
+            Fetch::Texel(dim) => dim,
+            Fetch::Size(dim) => {
                 let axis = match &self.shader.expr(args[1]).kind {
                     ExprKind::Literal(crate::ir::Literal::Int(a)) => (*a).clamp(0, 2) as u32,
                     _ => 0,
                 };
                 let key = self.texture_key(args[0]);
-                let dim = if name == "__texsize3d" { ImageDimension::D3 } else { ImageDimension::D2 };
                 let image = self.texture(&key, dim);
                 let size =
                     self.fb.add(Expression::ImageQuery { image, query: ImageQuery::Size { level: None } });
                 let axis = if dim == ImageDimension::D2 { axis.min(1) } else { axis };
                 let n = self.fb.add(Expression::AccessIndex { base: size, index: axis });
-                return Some(Ok(self.fb.add(Expression::As {
-                    expr: n,
-                    kind: ScalarKind::Sint,
-                    convert: Some(4),
-                })));
+                return Ok(self.fb.add(Expression::As { expr: n, kind: ScalarKind::Sint, convert: Some(4) }));
             }
-            _ => return None,
         };
         let key = self.texture_key(args[0]);
         let image = self.texture(&key, dim);
@@ -52,13 +67,13 @@ impl Translator<'_> {
         let ty = self.mb.inner(TypeInner::Vector { size, scalar: naga::Scalar::I32 });
         let coordinate = self.fb.add(Expression::Compose { ty, components: coords[..count].to_vec() });
         let level = self.fb.add(Expression::Literal(Literal::I32(0)));
-        Some(Ok(self.fb.add(Expression::ImageLoad {
+        Ok(self.fb.add(Expression::ImageLoad {
             image,
             coordinate,
             array_index: None,
             sample: None,
             level: Some(level),
-        })))
+        }))
     }
 
     /// The texture a name or `texref` argument denotes, as the interpreter decides it.

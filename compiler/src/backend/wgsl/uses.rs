@@ -1,6 +1,7 @@
 //! What a body reads and writes: its variables, predefined variables and derivative seeds, so the
 //! entry points initialize exactly the inputs it uses.
 
+use crate::ir::builtin::BuiltinId;
 use rustc_hash::FxHashSet;
 
 use crate::ir::{Axis, Block, ExprId, ExprKind, Input, LocalId, Place, Shader, Stmt};
@@ -108,8 +109,8 @@ impl Uses {
             }
             kind => {
                 if let ExprKind::Builtin(b, _) = kind {
-                    self.screen |= b.name == "xyz_screen";
-                    self.random |= b.name == "random";
+                    self.screen |= b.id == BuiltinId::XyzScreen;
+                    self.random |= b.id == BuiltinId::Random;
                 }
                 kind.for_each_operand(|o| self.expr(shader, o))
             }

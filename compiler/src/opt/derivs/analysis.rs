@@ -12,6 +12,7 @@
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::calls;
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Frequency, Rate, Type};
 use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
 use crate::sema::builtins::Builtin;
@@ -52,23 +53,19 @@ pub(super) fn global_varies(g: &Global) -> bool {
 /// Whether a call is a derivative consumer this pass replaces. The texture family is left for the
 /// texture filtering work; the 3-argument `filterstep` gives its filter region explicitly.
 pub(super) fn is_consumer(b: &Builtin) -> bool {
-    match b.name {
-        "Du" | "Dv" | "Deriv" | "filterwidth" | "area" | "calculatenormal" => true,
-        "filterstep" => b.params.len() == 2,
-        _ => false,
-    }
+    calls::rule(b) == calls::Rule::Consumer
 }
 
 /// Whether the consumer's replacement uses the derivatives of `u` and `v`.
 fn uses_uv(b: &Builtin) -> bool {
-    matches!(b.name, "Du" | "Dv" | "Deriv" | "calculatenormal")
+    matches!(b.id, BuiltinId::Du | BuiltinId::Dv | BuiltinId::Deriv | BuiltinId::CalculateNormal)
 }
 
 /// The arguments whose derivatives a consumer's replacement uses.
 pub(super) fn consumer_operands(b: &Builtin, args: &[ExprId]) -> Vec<ExprId> {
-    match b.name {
-        "filterstep" => vec![args[1]],
-        "Deriv" => args.to_vec(),
+    match b.id {
+        BuiltinId::FilterStep => vec![args[1]],
+        BuiltinId::Deriv => args.to_vec(),
         _ => vec![args[0]],
     }
 }

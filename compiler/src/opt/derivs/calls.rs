@@ -1,37 +1,155 @@
 //! The chain rule for the built-in functions of mathematics, shaping and components (the geometric
-//! ones are in `geometry.rs`). Each rule names the arguments it differentiates in [`operands`],
-//! which the analysis follows; a built-in missing there has derivative 0 (the list is in the
-//! module documentation of `opt::derivs`).
+//! ones are in `geometry.rs`). [`rule`] gives every built-in its rule, exhaustively (a new
+//! built-in does not compile until it has one); the arguments a chain rule differentiates are
+//! its [`operands`], which the analysis follows, and [`Diff::call`] builds the derivative. The
+//! list of the built-ins with derivative 0 is in the module documentation of `opt::derivs`.
 
 use std::f64::consts::PI;
 
 use super::analysis::dtype;
 use super::rules::Diff;
+use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, BinaryOp, ExprId};
 use crate::sema::builtins::Builtin;
 
+/// How the derivative pass treats a call of a built-in.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(super) enum Rule {
+    /// The chain rule of [`Diff::call`], through the arguments [`Through`] names.
+    Chain(Through),
+    /// A derivative though it has no arguments: `xyz_screen`, the window position.
+    Source,
+    /// Writes one component of its output argument with its last argument (`setxcomp`, ...,
+    /// `setcomp`): the same setter writes the derivative of that argument into the output's
+    /// shadows (`rewrite.rs`); the call itself has no value.
+    SetsComponent,
+    /// A derivative built-in, replaced by its formula (`consumers.rs`).
+    Consumer,
+    /// Derivative 0 by definition: piecewise constant (`floor`, `step`, ...), random, another
+    /// shader's or a light's values, texture lookups, strings and calls without a value. Their
+    /// output arguments get derivative 0 as well.
+    Zero,
+    /// Written in the language (`compiler/stdlib/builtins.sl`): the semantic stage inlines its
+    /// implementation, which is differentiated through its code, so no call of it reaches this
+    /// pass (one that did would get derivative 0).
+    Library,
+}
+
+/// The arguments a [`Rule::Chain`] differentiates.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(super) enum Through {
+    /// Every argument.
+    All,
+    /// The first (the value of `xcomp`, `comp`, `faceforward`).
+    First,
+    /// The last (the value a transform moves; its space or matrix is taken as constant).
+    Last,
+    /// All but the first (`select`'s two choices).
+    AfterFirst,
+    /// `spline`'s knots (not its parameter).
+    Knots,
+}
+
+/// The rule of `b`: one per built-in, and the only place that decides it.
+pub(super) fn rule(b: &Builtin) -> Rule {
+    use Through::{AfterFirst, All, First, Knots, Last};
+    match b.id {
+        B::Radians
+        | B::Degrees
+        | B::Sin
+        | B::Asin
+        | B::Cos
+        | B::Acos
+        | B::Tan
+        | B::Atan
+        | B::Pow
+        | B::Exp
+        | B::Sqrt
+        | B::InverseSqrt
+        | B::Log
+        | B::Mod
+        | B::Abs
+        | B::Min
+        | B::Max
+        | B::Clamp
+        | B::Mix
+        | B::SmoothStep
+        | B::Length
+        | B::Normalize
+        | B::Distance
+        | B::Reflect
+        | B::Refract
+        | B::Depth
+        | B::Rgb
+        | B::Clamp01
+        | B::Integrate
+        | B::Dot
+        | B::Cross
+        | B::Transpose
+        | B::Affine
+        | B::Invert => Rule::Chain(All),
+        B::XComp | B::YComp | B::ZComp | B::Comp | B::FaceForward => Rule::Chain(First),
+        B::Transform | B::VTransform | B::NTransform => Rule::Chain(Last),
+        B::Select => Rule::Chain(AfterFirst),
+        B::Spline => Rule::Chain(Knots),
+        B::XyzScreen => Rule::Source,
+        B::SetXComp | B::SetYComp | B::SetZComp | B::SetComp => Rule::SetsComponent,
+        B::Du | B::Dv | B::Deriv | B::FilterWidth | B::Area | B::CalculateNormal => Rule::Consumer,
+        // The 3-argument form gives its filter region explicitly: a step, piecewise constant.
+        B::FilterStep if b.params.len() == 2 => Rule::Consumer,
+        // Piecewise constant.
+        B::FilterStep | B::Sign | B::Floor | B::Ceil | B::Round | B::Step => Rule::Zero,
+        // Random per point, or one per draw.
+        B::Random | B::UniformRandom => Rule::Zero,
+        // Texture lookups (they keep their implicit derivatives) and the texel fetches and sizes
+        // they are expanded into.
+        B::Texture
+        | B::Texture3d
+        | B::Environment
+        | B::Shadow
+        | B::Texel2d
+        | B::Texel3d
+        | B::Texsize2d
+        | B::Texsize3d => Rule::Zero,
+        // Lights' and other shaders' values (`lightsource` and `surface` write their outputs).
+        B::Ambient | B::LightSource | B::Surface => Rule::Zero,
+        // Strings, and calls without a value.
+        B::Printf | B::Format | B::Concat | B::Match | B::ColourSpace => Rule::Zero,
+        B::Noise
+        | B::Snoise
+        | B::Pnoise
+        | B::Cellnoise
+        | B::Diffuse
+        | B::Specular
+        | B::Phong
+        | B::SpecularBrdf
+        | B::CTransform
+        | B::Ptlined
+        | B::Rotate
+        | B::Translate
+        | B::Scale
+        | B::Determinant
+        | B::Fresnel => Rule::Library,
+    }
+}
+
 /// The arguments whose derivatives the rule of `b` uses (none for the built-ins whose derivative
 /// is taken as 0).
 pub(super) fn operands(b: &Builtin, args: &[ExprId]) -> Vec<ExprId> {
-    match b.name {
-        "radians" | "degrees" | "sin" | "cos" | "tan" | "asin" | "acos" | "atan" | "pow" | "exp" | "sqrt"
-        | "inversesqrt" | "log" | "mod" | "abs" | "min" | "max" | "clamp" | "mix" | "smoothstep"
-        | "length" | "normalize" | "distance" | "reflect" | "refract" | "depth" | "rgb" | "clamp01"
-        | "integrate" | "dot" | "cross" | "transpose" | "affine" | "invert" => args.to_vec(),
-        "xcomp" | "ycomp" | "zcomp" | "comp" | "faceforward" => vec![args[0]],
-        "transform" | "vtransform" | "ntransform" => {
-            vec![*args.last().expect("an argument")]
-        }
-        "select" => args[1..].to_vec(),
-        "spline" => args[knots(b)..].to_vec(),
-        _ => Vec::new(),
+    match rule(b) {
+        Rule::Chain(Through::All) => args.to_vec(),
+        Rule::Chain(Through::First) => vec![args[0]],
+        Rule::Chain(Through::Last) => vec![*args.last().expect("an argument")],
+        Rule::Chain(Through::AfterFirst) => args[1..].to_vec(),
+        Rule::Chain(Through::Knots) => args[knots(b)..].to_vec(),
+        Rule::Source | Rule::SetsComponent | Rule::Consumer | Rule::Zero | Rule::Library => Vec::new(),
     }
 }
 
 /// Whether a call's derivative is not 0 though it has no arguments (`xyz_screen`).
 pub(super) fn is_source(b: &Builtin) -> bool {
-    b.name == "xyz_screen"
+    rule(b) == Rule::Source
 }
 
 /// The inputs that the derivative of a built-in's output arguments depends on: the value
@@ -43,7 +161,7 @@ pub(super) fn output_inputs(b: &Builtin, args: &[ExprId]) -> Vec<ExprId> {
 
 /// Whether `b` writes one component of its output argument with its last argument.
 pub(super) fn is_component_setter(b: &Builtin) -> bool {
-    matches!(b.name, "setxcomp" | "setycomp" | "setzcomp" | "setcomp")
+    rule(b) == Rule::SetsComponent
 }
 
 /// Where the knots of a `spline` overload start: after the optional basis name and the parameter.
@@ -52,7 +170,8 @@ fn knots(b: &Builtin) -> usize {
 }
 
 impl Diff<'_> {
-    /// The derivative of the call `e` of `b` with arguments `a`.
+    /// The derivative of the call `e` of `b` with arguments `a`: the chain rule of each built-in
+    /// whose [`rule`] is [`Rule::Chain`] or [`Rule::Source`] (here or in `geometry.rs`).
     pub(super) fn call(
         &mut self,
         e: ExprId,
@@ -62,24 +181,24 @@ impl Diff<'_> {
     ) -> Option<ExprId> {
         let ty = self.ty(e);
         let dty = dtype(ty).expect("varies");
-        match (b.name, a.len()) {
-            ("radians" | "degrees", _) => {
+        match (b.id, a.len()) {
+            (B::Radians | B::Degrees, _) => {
                 let dx = self.d(a[0], axis)?;
-                let k = self.lit(if b.name == "radians" { PI / 180.0 } else { 180.0 / PI });
+                let k = self.lit(if b.id == B::Radians { PI / 180.0 } else { 180.0 / PI });
                 Some(self.mul(dx, k))
             }
-            ("sin", _) => {
+            (B::Sin, _) => {
                 let dx = self.d(a[0], axis)?;
-                let c = self.shared(e, 0, |s| s.b.call("cos", vec![a[0]]));
+                let c = self.shared(e, 0, |s| s.b.call(B::Cos, vec![a[0]]));
                 Some(self.mul(c, dx))
             }
-            ("cos", _) => {
+            (B::Cos, _) => {
                 let dx = self.d(a[0], axis)?;
-                let s = self.shared(e, 0, |s| s.b.call("sin", vec![a[0]]));
+                let s = self.shared(e, 0, |s| s.b.call(B::Sin, vec![a[0]]));
                 let m = self.mul(s, dx);
                 Some(self.b.neg(m))
             }
-            ("tan", _) => {
+            (B::Tan, _) => {
                 // 1 + tan² = 1 / cos², from the result itself.
                 let dx = self.d(a[0], axis)?;
                 let k = self.shared(e, 0, |s| {
@@ -88,17 +207,17 @@ impl Diff<'_> {
                 });
                 Some(self.mul(dx, k))
             }
-            ("asin" | "acos", _) => {
+            (B::Asin | B::Acos, _) => {
                 let dx = self.d(a[0], axis)?;
                 let k = self.shared(e, 0, |s| {
                     let (one, sq) = (s.lit(1.0), s.mul(a[0], a[0]));
                     let r = s.op(BinaryOp::Sub, one, sq);
-                    s.b.call("inversesqrt", vec![r])
+                    s.b.call(B::InverseSqrt, vec![r])
                 });
                 let m = self.mul(dx, k);
-                Some(if b.name == "acos" { self.b.neg(m) } else { m })
+                Some(if b.id == B::Acos { self.b.neg(m) } else { m })
             }
-            ("atan", 1) => {
+            (B::Atan, 1) => {
                 let dx = self.d(a[0], axis)?;
                 let k = self.shared(e, 0, |s| {
                     let (one, sq) = (s.lit(1.0), s.mul(a[0], a[0]));
@@ -106,7 +225,7 @@ impl Diff<'_> {
                 });
                 Some(self.div(dx, k))
             }
-            ("atan", _) => {
+            (B::Atan, _) => {
                 // atan(y, x): (x dy - y dx) / (x² + y²).
                 let (y, x) = (a[0], a[1]);
                 let (dy, dx) = (self.d(y, axis), self.d(x, axis));
@@ -119,17 +238,17 @@ impl Diff<'_> {
                 });
                 Some(self.div(num, r2))
             }
-            ("pow", _) => self.pow(e, a[0], a[1], axis),
-            ("exp", _) => {
+            (B::Pow, _) => self.pow(e, a[0], a[1], axis),
+            (B::Exp, _) => {
                 let dx = self.d(a[0], axis)?;
                 Some(self.mul(e, dx))
             }
-            ("sqrt", _) => {
+            (B::Sqrt, _) => {
                 let dx = self.d(a[0], axis)?;
                 let twice = self.shared(e, 0, |s| s.op(BinaryOp::Add, e, e));
                 Some(self.div(dx, twice))
             }
-            ("inversesqrt", _) => {
+            (B::InverseSqrt, _) => {
                 // d x^(-1/2) = -x^(-3/2)/2 dx = -y³/2 dx.
                 let dx = self.d(a[0], axis)?;
                 let k = self.shared(e, 0, |s| {
@@ -139,15 +258,15 @@ impl Diff<'_> {
                 });
                 Some(self.mul(k, dx))
             }
-            ("log", 1) => {
+            (B::Log, 1) => {
                 let dx = self.d(a[0], axis)?;
                 Some(self.div(dx, a[0]))
             }
-            ("log", _) => {
+            (B::Log, _) => {
                 // log_b x = ln x / ln b.
                 let (x, base) = (a[0], a[1]);
                 let (dx, db) = (self.d(x, axis), self.d(base, axis));
-                let ln_b = self.shared(e, 0, |s| s.b.call("log", vec![base]));
+                let ln_b = self.shared(e, 0, |s| s.b.call(B::Log, vec![base]));
                 let t1 = dx.map(|dx| {
                     let den = self.mul(x, ln_b);
                     self.div(dx, den)
@@ -158,30 +277,30 @@ impl Diff<'_> {
                 });
                 self.sub(t1, t2)
             }
-            ("mod", _) => {
+            (B::Mod, _) => {
                 // mod(a, b) = a - b floor(a/b).
                 let (da, db) = (self.d(a[0], axis), self.d(a[1], axis));
                 let t2 = db.map(|db| {
                     let f = self.shared(e, 0, |s| {
                         let q = s.div(a[0], a[1]);
-                        s.b.call("floor", vec![q])
+                        s.b.call(B::Floor, vec![q])
                     });
                     self.mul(f, db)
                 });
                 self.sub(da, t2)
             }
-            ("abs", _) => {
+            (B::Abs, _) => {
                 let dx = self.d(a[0], axis)?;
                 Some(self.componentwise(dty, |s, i| {
                     let xi = s.component(a[0], i);
-                    let sign = s.b.call("sign", vec![xi]);
+                    let sign = s.b.call(B::Sign, vec![xi]);
                     let di = s.component(dx, i);
                     s.mul(sign, di)
                 }))
             }
-            ("min" | "max", _) => self.min_max(e, b.name == "min", a, axis),
-            ("clamp", _) => self.clamp(a[0], a[1], a[2], dty, axis),
-            ("mix", _) => {
+            (B::Min | B::Max, _) => self.min_max(e, b.id == B::Min, a, axis),
+            (B::Clamp, _) => self.clamp(a[0], a[1], a[2], dty, axis),
+            (B::Mix, _) => {
                 let (x, y, t) = (a[0], a[1], a[2]);
                 let (dx, dy, dt) = (self.d(x, axis), self.d(y, axis), self.d(t, axis));
                 let t1 = dx.map(|dx| {
@@ -202,8 +321,8 @@ impl Diff<'_> {
                 let sum = self.add(t1, t2);
                 self.add(sum, t3)
             }
-            ("smoothstep", _) => self.smoothstep(e, a, axis),
-            ("spline", _) => {
+            (B::SmoothStep, _) => self.smoothstep(e, a, axis),
+            (B::Spline, _) => {
                 let first = knots(b);
                 let ds: Vec<Option<ExprId>> = a[first..].iter().map(|&k| self.d(k, axis)).collect();
                 if ds.iter().all(Option::is_none) {
@@ -213,19 +332,19 @@ impl Diff<'_> {
                 for (&k, d) in a[first..].iter().zip(ds) {
                     args.push(self.or_zero(d, k));
                 }
-                Some(self.b.call("spline", args))
+                Some(self.b.call(B::Spline, args))
             }
-            ("xcomp" | "ycomp" | "zcomp" | "rgb" | "transpose" | "affine" | "integrate", _) => {
+            (B::XComp | B::YComp | B::ZComp | B::Rgb | B::Transpose | B::Affine | B::Integrate, _) => {
                 let dx = self.d(a[0], axis)?;
-                Some(self.b.call(b.name, vec![dx]))
+                Some(self.b.call(b.id, vec![dx]))
             }
-            ("comp", _) => {
+            (B::Comp, _) => {
                 let dx = self.d(a[0], axis)?;
                 let mut args = a.to_vec();
                 args[0] = dx;
-                Some(self.b.call("comp", args))
+                Some(self.b.call(B::Comp, args))
             }
-            ("clamp01", _) => {
+            (B::Clamp01, _) => {
                 let dx = self.d(a[0], axis)?;
                 Some(self.componentwise(dty, |s, i| {
                     let (xi, di) = (s.component(a[0], i), s.component(dx, i));
@@ -233,27 +352,87 @@ impl Diff<'_> {
                     s.guard(inside, di)
                 }))
             }
-            ("select", _) => {
+            (B::Select, _) => {
                 let (dx, dy) = (self.d(a[1], axis), self.d(a[2], axis));
                 if dx.is_none() && dy.is_none() {
                     return None;
                 }
                 let (dx, dy) = (self.or_zero(dx, a[1]), self.or_zero(dy, a[2]));
-                Some(self.b.call("select", vec![a[0], dx, dy]))
+                Some(self.b.call(B::Select, vec![a[0], dx, dy]))
             }
-            ("dot" | "cross", _) => {
+            (B::Dot | B::Cross, _) => {
                 let (dx, dy) = (self.d(a[0], axis), self.d(a[1], axis));
-                let t1 = dx.map(|dx| self.b.call(b.name, vec![dx, a[1]]));
-                let t2 = dy.map(|dy| self.b.call(b.name, vec![a[0], dy]));
+                let t1 = dx.map(|dx| self.b.call(b.id, vec![dx, a[1]]));
+                let t2 = dy.map(|dy| self.b.call(b.id, vec![a[0], dy]));
                 self.add(t1, t2)
             }
-            ("xyz_screen", _) => {
+            (B::XyzScreen, _) => {
                 // x and y are the pixel coordinates themselves.
                 let (x, y) = if axis == Axis::X { (1.0, 0.0) } else { (0.0, 1.0) };
                 let parts = vec![self.lit(x), self.lit(y), self.lit(0.0), self.lit(0.0)];
                 Some(self.b.construct(parts, Type::of(Base::Float4)))
             }
-            _ => self.geometric(e, b, a, axis),
+            (B::Transform | B::VTransform | B::NTransform, _) => self.d_transform(b, a, axis),
+            (B::Length, _) => self.d_length(e, a, axis),
+            (B::Normalize, _) => self.d_normalize(e, a, axis),
+            (B::Distance, _) => self.d_distance(e, a, axis),
+            (B::FaceForward, _) => self.d_faceforward(e, a, axis),
+            (B::Reflect | B::Refract, _) => self.d_reflect_refract(e, a, axis),
+            (B::Depth, _) => self.d_depth(e, a, axis),
+            (B::Invert, _) => self.d_invert(e, a, axis),
+            // No chain rule: their rule gives them no operands, so no call of them is active.
+            (
+                B::SetXComp
+                | B::SetYComp
+                | B::SetZComp
+                | B::SetComp
+                | B::Du
+                | B::Dv
+                | B::Deriv
+                | B::FilterWidth
+                | B::Area
+                | B::CalculateNormal
+                | B::FilterStep
+                | B::Sign
+                | B::Floor
+                | B::Ceil
+                | B::Round
+                | B::Step
+                | B::Random
+                | B::UniformRandom
+                | B::Texture
+                | B::Texture3d
+                | B::Environment
+                | B::Shadow
+                | B::Texel2d
+                | B::Texel3d
+                | B::Texsize2d
+                | B::Texsize3d
+                | B::Ambient
+                | B::LightSource
+                | B::Surface
+                | B::Printf
+                | B::Format
+                | B::Concat
+                | B::Match
+                | B::ColourSpace
+                | B::Noise
+                | B::Snoise
+                | B::Pnoise
+                | B::Cellnoise
+                | B::Diffuse
+                | B::Specular
+                | B::Phong
+                | B::SpecularBrdf
+                | B::CTransform
+                | B::Ptlined
+                | B::Rotate
+                | B::Translate
+                | B::Scale
+                | B::Determinant
+                | B::Fresnel,
+                _,
+            ) => None,
         }
     }
 
@@ -265,7 +444,7 @@ impl Diff<'_> {
             let k = self.shared(e, 0, |s| {
                 let one = s.lit(1.0);
                 let p1 = s.op(BinaryOp::Sub, p, one);
-                let power = s.b.call("pow", vec![x, p1]);
+                let power = s.b.call(B::Pow, vec![x, p1]);
                 s.mul(p, power)
             });
             self.mul(k, dx)
@@ -273,7 +452,7 @@ impl Diff<'_> {
         let t2 = dp.map(|dp| {
             self.componentwise(ty, |s, i| {
                 let (xi, yi, di) = (s.component(x, i), s.component(e, i), s.component(dp, i));
-                let ln = s.b.call("log", vec![xi]);
+                let ln = s.b.call(B::Log, vec![xi]);
                 let k = s.mul(yi, ln);
                 let term = s.mul(k, di);
                 let positive = s.positive(xi);
@@ -286,7 +465,7 @@ impl Diff<'_> {
     /// min and max, pairwise from the left: the derivative of the operand that wins (the first on
     /// a tie), per component.
     fn min_max(&mut self, e: ExprId, min: bool, a: &[ExprId], axis: Axis) -> Option<ExprId> {
-        let name = if min { "min" } else { "max" };
+        let id = if min { B::Min } else { B::Max };
         let mut best = a[0];
         let mut d_best = self.d(a[0], axis);
         for (k, &next) in a.iter().enumerate().skip(1) {
@@ -302,7 +481,7 @@ impl Diff<'_> {
                 }));
             }
             if k + 1 < a.len() {
-                best = self.shared(e, k as u8, |s| s.b.call(name, vec![best, next]));
+                best = self.shared(e, k as u8, |s| s.b.call(id, vec![best, next]));
             }
         }
         d_best
@@ -338,7 +517,7 @@ impl Diff<'_> {
         let dr = self.d(ratio, axis)?;
         let slope = self.shared(e, 1, |s| {
             let (zero, one, six) = (s.lit(0.0), s.lit(1.0), s.lit(6.0));
-            let clamped = s.b.call("clamp", vec![ratio, zero, one]);
+            let clamped = s.b.call(B::Clamp, vec![ratio, zero, one]);
             let rest = s.op(BinaryOp::Sub, one, clamped);
             let k = s.mul(six, clamped);
             s.mul(k, rest)

@@ -5,6 +5,7 @@
 //! 2x2 system whose determinant is det = du_X dv_Y - du_Y dv_X; solving it gives `Du` and `Dv`.
 
 use super::rules::{Diff, pick};
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Base, Frequency, Type};
 use crate::ir::{Axis, BinaryOp, ExprId, ExprKind, LocalId};
 
@@ -26,28 +27,28 @@ impl Diff<'_> {
         let ty = expr.ty;
         // A consumer of a constant or per-draw value is exactly 0.
         let uniform = |s: &Self, x: ExprId| s.b.rate(x).frequency < Frequency::Vertex;
-        let replacement = match b.name {
-            "filterstep" if uniform(self, args[1]) => self.b.call("step", args.clone()),
-            "filterstep" => self.filterstep(args[0], args[1]),
-            "Deriv" if uniform(self, args[0]) || uniform(self, args[1]) => self.b.zero(ty),
-            "Deriv" => self.deriv(args[0], args[1], ty, uv),
+        let replacement = match b.id {
+            BuiltinId::FilterStep if uniform(self, args[1]) => self.b.call(BuiltinId::Step, args.clone()),
+            BuiltinId::FilterStep => self.filterstep(args[0], args[1]),
+            BuiltinId::Deriv if uniform(self, args[0]) || uniform(self, args[1]) => self.b.zero(ty),
+            BuiltinId::Deriv => self.deriv(args[0], args[1], ty, uv),
             _ if uniform(self, args[0]) => self.b.zero(ty),
-            "Du" | "Dv" => {
-                let which = if b.name == "Du" { 0 } else { 1 };
+            BuiltinId::Du | BuiltinId::Dv => {
+                let which = if b.id == BuiltinId::Du { 0 } else { 1 };
                 match self.surface(args[0], uv, which) {
                     Some(value) => value,
                     None => self.b.zero(ty),
                 }
             }
-            "filterwidth" => self.filterwidth(args[0]),
-            "area" => match self.screen(args[0]) {
+            BuiltinId::FilterWidth => self.filterwidth(args[0]),
+            BuiltinId::Area => match self.screen(args[0]) {
                 Some((dx, dy)) => {
                     let n = self.b.binary(BinaryOp::Cross, dx, dy);
-                    self.b.call("length", vec![n])
+                    self.b.call(BuiltinId::Length, vec![n])
                 }
                 None => self.b.zero(ty),
             },
-            "calculatenormal" => self.calculatenormal(args[0], ty, uv),
+            BuiltinId::CalculateNormal => self.calculatenormal(args[0], ty, uv),
             other => unreachable!("`{other}` is not a consumer"),
         };
         self.become_(c, replacement);
@@ -147,7 +148,7 @@ impl Diff<'_> {
         let mut sum = None;
         for axis in [Axis::X, Axis::Y] {
             if let Some(d) = self.d(x, axis) {
-                let t = self.b.call("abs", vec![d]);
+                let t = self.b.call(BuiltinId::Abs, vec![d]);
                 sum = self.add(sum, Some(t));
             }
         }
@@ -158,7 +159,7 @@ impl Diff<'_> {
     /// which is `clamp((x - edge)/w + 1/2, 0, 1)`; the plain step where w = 0.
     fn filterstep(&mut self, edge: ExprId, x: ExprId) -> ExprId {
         let w = self.filterwidth(x);
-        let step = self.b.call("step", vec![edge, x]);
+        let step = self.b.call(BuiltinId::Step, vec![edge, x]);
         if matches!(self.b.shader.expr(w).kind, ExprKind::Literal(_)) {
             return step;
         }
@@ -167,7 +168,7 @@ impl Diff<'_> {
         let half = self.b.float(0.5);
         let centred = self.b.binary(BinaryOp::Add, ratio, half);
         let (zero, one) = (self.b.float(0.0), self.b.float(1.0));
-        let filtered = self.b.call("clamp", vec![centred, zero, one]);
+        let filtered = self.b.call(BuiltinId::Clamp, vec![centred, zero, one]);
         let zero = self.b.float(0.0);
         let wide = self.b.binary(BinaryOp::Gt, w, zero);
         self.b.select(wide, filtered, step)

@@ -3,96 +3,99 @@
 //! library code, `compiler/stdlib/builtins.sl`, differentiated through it.)
 
 use super::rules::Diff;
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, BinaryOp, ExprId};
 use crate::sema::builtins::Builtin;
 
 impl Diff<'_> {
-    /// The derivative of the call `e` of the geometric built-in `b` with arguments `a`; `None` for
-    /// the built-ins whose derivative is 0.
-    pub(super) fn geometric(
-        &mut self,
-        e: ExprId,
-        b: &'static Builtin,
-        a: &[ExprId],
-        axis: Axis,
-    ) -> Option<ExprId> {
-        match (b.name, a.len()) {
-            ("transform" | "vtransform" | "ntransform", _) => {
-                // Linear in the value: the same transform of the derivative (a point's as a vector).
-                let (last, leading) = a.split_last().expect("an argument");
-                let dx = self.d(*last, axis)?;
-                let mut args = leading.to_vec();
-                args.push(dx);
-                Some(self.b.call(b.name, args))
-            }
-            ("length", _) => {
-                // d|x| = (x . dx) / |x|.
-                let dx = self.d(a[0], axis)?;
-                let x = self.prim(a[0]);
-                let dot = self.op(BinaryOp::Dot, x, dx);
-                let q = self.div(dot, e);
-                let nonzero = self.shared(e, 0, |s| s.positive(e));
-                Some(self.guard(nonzero, q))
-            }
-            ("normalize", _) => {
-                // n = x/|x|: dn = (dx - n (n . dx)) / |x|.
-                let dx = self.d(a[0], axis)?;
-                let len = self.shared(e, 0, |s| s.b.call("length", vec![a[0]]));
-                let along = self.op(BinaryOp::Dot, e, dx);
-                let radial = self.mul(e, along);
-                let num = self.op(BinaryOp::Sub, dx, radial);
-                let q = self.div(num, len);
-                let nonzero = self.shared(e, 1, |s| s.positive(len));
-                Some(self.guard(nonzero, q))
-            }
-            ("distance", _) => {
-                let (dp, dq) = (self.d(a[0], axis), self.d(a[1], axis));
-                let dd = self.sub(dp, dq)?;
-                let diff = self.shared(e, 0, |s| {
-                    let (p, q) = (s.prim(a[0]), s.prim(a[1]));
-                    s.op(BinaryOp::Sub, p, q)
-                });
-                let dot = self.op(BinaryOp::Dot, diff, dd);
-                let q = self.div(dot, e);
-                let nonzero = self.shared(e, 1, |s| s.positive(e));
-                Some(self.guard(nonzero, q))
-            }
-            ("faceforward", _) => {
-                // The result is N or -N: the derivative of N with the sign that was chosen.
-                let dn = self.d(a[0], axis)?;
-                let kept = self.shared(e, 0, |s| {
-                    let (dot, zero) = (s.op(BinaryOp::Dot, e, a[0]), s.lit(0.0));
-                    s.op(BinaryOp::Ge, dot, zero)
-                });
-                let flipped = self.b.neg(dn);
-                Some(self.b.select(kept, dn, flipped))
-            }
-            ("reflect" | "refract", _) => {
-                let expanded = self.shared(e, 0, |s| s.expand_reflect_refract(a));
-                self.d(expanded, axis)
-            }
-            ("depth", _) => {
-                // depth is affine in the point: depth(p + dp) - depth(p) = depth(dp) - depth(0).
-                let dp = self.d(a[0], axis)?;
-                let point = Type::of(Base::Point);
-                let at_origin = self.shared(e, 0, |s| {
-                    let origin = s.b.zero(point);
-                    s.b.call("depth", vec![origin])
-                });
-                let moved = self.b.convert(dp, point);
-                let moved = self.b.call("depth", vec![moved]);
-                Some(self.op(BinaryOp::Sub, moved, at_origin))
-            }
-            ("invert", _) => {
-                // d A⁻¹ = -A⁻¹ dA A⁻¹.
-                let da = self.d(a[0], axis)?;
-                let left = self.mul(e, da);
-                let product = self.mul(left, e);
-                Some(self.b.neg(product))
-            }
-            _ => None,
-        }
+    /// The derivative of `transform`, `vtransform` or `ntransform` (`b`) with arguments `a`.
+    pub(super) fn d_transform(&mut self, b: &'static Builtin, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        // Linear in the value: the same transform of the derivative (a point's as a vector).
+        let (last, leading) = a.split_last().expect("an argument");
+        let dx = self.d(*last, axis)?;
+        let mut args = leading.to_vec();
+        args.push(dx);
+        Some(self.b.call(b.id, args))
+    }
+
+    /// The derivative of `length` (`e` the call, `a` its arguments).
+    pub(super) fn d_length(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        // d|x| = (x . dx) / |x|.
+        let dx = self.d(a[0], axis)?;
+        let x = self.prim(a[0]);
+        let dot = self.op(BinaryOp::Dot, x, dx);
+        let q = self.div(dot, e);
+        let nonzero = self.shared(e, 0, |s| s.positive(e));
+        Some(self.guard(nonzero, q))
+    }
+
+    /// The derivative of `normalize` (`e` the call, `a` its arguments).
+    pub(super) fn d_normalize(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        // n = x/|x|: dn = (dx - n (n . dx)) / |x|.
+        let dx = self.d(a[0], axis)?;
+        let len = self.shared(e, 0, |s| s.b.call(BuiltinId::Length, vec![a[0]]));
+        let along = self.op(BinaryOp::Dot, e, dx);
+        let radial = self.mul(e, along);
+        let num = self.op(BinaryOp::Sub, dx, radial);
+        let q = self.div(num, len);
+        let nonzero = self.shared(e, 1, |s| s.positive(len));
+        Some(self.guard(nonzero, q))
+    }
+
+    /// The derivative of `distance` (`e` the call, `a` its arguments).
+    pub(super) fn d_distance(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        let (dp, dq) = (self.d(a[0], axis), self.d(a[1], axis));
+        let dd = self.sub(dp, dq)?;
+        let diff = self.shared(e, 0, |s| {
+            let (p, q) = (s.prim(a[0]), s.prim(a[1]));
+            s.op(BinaryOp::Sub, p, q)
+        });
+        let dot = self.op(BinaryOp::Dot, diff, dd);
+        let q = self.div(dot, e);
+        let nonzero = self.shared(e, 1, |s| s.positive(e));
+        Some(self.guard(nonzero, q))
+    }
+
+    /// The derivative of `faceforward` (`e` the call, `a` its arguments).
+    pub(super) fn d_faceforward(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        // The result is N or -N: the derivative of N with the sign that was chosen.
+        let dn = self.d(a[0], axis)?;
+        let kept = self.shared(e, 0, |s| {
+            let (dot, zero) = (s.op(BinaryOp::Dot, e, a[0]), s.lit(0.0));
+            s.op(BinaryOp::Ge, dot, zero)
+        });
+        let flipped = self.b.neg(dn);
+        Some(self.b.select(kept, dn, flipped))
+    }
+
+    /// The derivative of `reflect` or `refract` (`e` the call, `a` its arguments).
+    pub(super) fn d_reflect_refract(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        let expanded = self.shared(e, 0, |s| s.expand_reflect_refract(a));
+        self.d(expanded, axis)
+    }
+
+    /// The derivative of `depth` (`e` the call, `a` its arguments).
+    pub(super) fn d_depth(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        // depth is affine in the point: depth(p + dp) - depth(p) = depth(dp) - depth(0).
+        let dp = self.d(a[0], axis)?;
+        let point = Type::of(Base::Point);
+        let at_origin = self.shared(e, 0, |s| {
+            let origin = s.b.zero(point);
+            s.b.call(BuiltinId::Depth, vec![origin])
+        });
+        let moved = self.b.convert(dp, point);
+        let moved = self.b.call(BuiltinId::Depth, vec![moved]);
+        Some(self.op(BinaryOp::Sub, moved, at_origin))
+    }
+
+    /// The derivative of `invert` (`e` the call, `a` its arguments).
+    pub(super) fn d_invert(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
+        // d A⁻¹ = -A⁻¹ dA A⁻¹.
+        let da = self.d(a[0], axis)?;
+        let left = self.mul(e, da);
+        let product = self.mul(left, e);
+        Some(self.b.neg(product))
     }
 
     /// reflect(I, N) = I - 2 (I.N) N and refract(I, N, eta) as RenderMan defines them, written out
@@ -115,7 +118,7 @@ impl Diff<'_> {
         let s2 = self.mul(eta2, sin2);
         let k = self.op(BinaryOp::Sub, one, s2);
         let bent = self.mul(eta, i);
-        let root = self.b.call("sqrt", vec![k]);
+        let root = self.b.call(BuiltinId::Sqrt, vec![k]);
         let eta_cos = self.mul(eta, cos);
         let normal_part = self.op(BinaryOp::Add, eta_cos, root);
         let along = self.mul(normal_part, n);

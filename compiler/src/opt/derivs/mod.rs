@@ -19,6 +19,8 @@
 //! 3. `rules`, `calls`, `geometry`: the derivative of each expression, built once per axis.
 //! 4. `consumers`: each consumer's expression is overwritten in place with its formula.
 //!
+//! Every built-in has its rule in `calls::rule`, an exhaustive match on its id: a chain rule, a
+//! consumer, a component setter, derivative 0 by definition, or library code.
 //! Derivative 0 by definition: per-light values (`L`, `Cl`, `Ol`, Stanford's `H`: a light's
 //! values are taken as constant across the pixel), `du` and `dv`, `random()`, the lighting
 //! functions, texture lookups, the outputs of `lightsource` and `surface` (another shader's

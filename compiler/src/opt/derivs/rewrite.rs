@@ -171,7 +171,7 @@ impl Diff<'_> {
                     let mut shadow_args = args.clone();
                     shadow_args[i] = self.shadow_expr(arg, shadows, axis);
                     *shadow_args.last_mut().expect("a value") = self.or_zero(d, value);
-                    let shadow_call = self.b.call(b.name, shadow_args);
+                    let shadow_call = self.b.call(b.id, shadow_args);
                     out.push(Stmt::Eval(shadow_call));
                 } else {
                     let zero = self.or_zero(None, arg);

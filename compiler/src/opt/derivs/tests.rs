@@ -34,7 +34,7 @@ fn consumers(shader: &Shader) -> Vec<&'static str> {
     let mut names: Vec<&'static str> = used
         .iter()
         .filter_map(|&e| match &shader.expr(e).kind {
-            ExprKind::Builtin(b, _) if b.rate == RateRule::Derivative => Some(b.name),
+            ExprKind::Builtin(b, _) if b.rate == RateRule::Derivative => Some(b.name()),
             _ => None,
         })
         .collect();
@@ -222,7 +222,7 @@ fn well_typed(shader: &Shader, before: &Shader) {
             ExprKind::Select(c, a, b) => ty(*c) == Type::BOOL && ty(*a) == e.ty && ty(*b) == e.ty,
             ExprKind::Builtin(b, args) => {
                 let types: Vec<Type> = args.iter().map(|&a| ty(a)).collect();
-                builtins::find(b.name, &types).is_some_and(|found| std::ptr::eq(found, *b)) && e.ty == b.ret
+                builtins::find(b.id, &types).is_some_and(|found| std::ptr::eq(found, *b)) && e.ty == b.ret
             }
         };
         assert!(ok, "expression {i} is ill-typed: {:?} of type {}", e.kind, e.ty);
@@ -300,7 +300,7 @@ fn uniform_arguments_give_exact_zeros() {
     for e in calls {
         match &shader.expr(e).kind {
             ExprKind::Literal(Literal::Float(x)) => assert_eq!(*x, 0.0),
-            ExprKind::Builtin(b, _) => assert_eq!(b.name, "step"),
+            ExprKind::Builtin(b, _) => assert_eq!(b.name(), "step"),
             other => panic!("not a zero: {other:?}"),
         }
     }
@@ -441,7 +441,7 @@ fn component_setters_are_differentiated_on_the_shadows() {
             Stmt::Eval(e) => match &shader.expr(*e).kind {
                 ExprKind::Builtin(b, args) => Some(format!(
                     "{}({})",
-                    b.name,
+                    b.id,
                     match shader.expr(args[0]).kind {
                         ExprKind::Local(l) => shader.local(l).name.to_string(),
                         ExprKind::Global(g) => g.name.to_string(),
@@ -463,7 +463,7 @@ fn component_setters_are_differentiated_on_the_shadows() {
         .iter()
         .position(|s| {
             matches!(s, Stmt::Eval(e) if matches!(&shader.expr(*e).kind,
-        ExprKind::Builtin(b, _) if b.name == "lightsource"))
+        ExprKind::Builtin(b, _) if b.name() == "lightsource"))
         })
         .expect("the call");
     let resets: Vec<String> = stmts[call - 2..call]

@@ -19,6 +19,7 @@ use std::sync::OnceLock;
 
 use rustc_hash::FxHashMap;
 
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Base, Type};
 
 /// How a built-in's result rate follows from its arguments.
@@ -67,8 +68,8 @@ pub struct BuiltinParam {
 /// One overload of a built-in function.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Builtin {
-    /// Its name.
-    pub name: &'static str,
+    /// Which built-in it is (its name).
+    pub id: BuiltinId,
     /// The result type.
     pub ret: Type,
     /// The fixed parameters.
@@ -84,6 +85,11 @@ pub struct Builtin {
 }
 
 impl Builtin {
+    /// Its name.
+    pub fn name(&self) -> &'static str {
+        self.id.name()
+    }
+
     /// Whether `n` arguments can be passed.
     pub fn accepts_count(&self, n: usize) -> bool {
         if self.rest.is_some() { n >= self.params.len() } else { n == self.params.len() }
@@ -116,7 +122,7 @@ impl Builtins {
 /// The optional `"name", value` arguments a built-in accepts after its positional ones (RI 3.2,
 /// section 15.7), each with whether its value is a string (`"filter"`) rather than a float; `None`
 /// for a built-in that takes none.
-pub fn options(name: &str) -> Option<&'static [(&'static str, bool)]> {
+pub fn options(id: BuiltinId) -> Option<&'static [(&'static str, bool)]> {
     const TEXTURE: &[(&str, bool)] = &[
         ("blur", false),
         ("width", false),
@@ -134,20 +140,20 @@ pub fn options(name: &str) -> Option<&'static [(&'static str, bool)]> {
         ("samples", false),
         ("bias", false),
     ];
-    match name {
-        "texture" | "environment" => Some(TEXTURE),
-        "shadow" => Some(SHADOW),
+    match id {
+        BuiltinId::Texture | BuiltinId::Environment => Some(TEXTURE),
+        BuiltinId::Shadow => Some(SHADOW),
         _ => None,
     }
 }
 
-/// The options of [`options`] that some backend implements for `name`; a call naming any other is
+/// The options of [`options`] that some backend implements for `id`; a call naming any other is
 /// warned about (E0405). The passes that implement an option read it from the call's arguments
 /// after the positional ones (`opt/textures.rs`, `opt/shadow.rs`): update this table with them.
-pub fn honoured_options(name: &str) -> &'static [&'static str] {
-    match name {
-        "environment" => &["blur", "width"],
-        "shadow" => &["samples", "blur", "bias", "width"],
+pub fn honoured_options(id: BuiltinId) -> &'static [&'static str] {
+    match id {
+        BuiltinId::Environment => &["blur", "width"],
+        BuiltinId::Shadow => &["samples", "blur", "bias", "width"],
         _ => &[],
     }
 }
@@ -232,21 +238,21 @@ pub fn builtins() -> &'static Builtins {
         let mut by_name: FxHashMap<&'static str, Vec<Builtin>> = FxHashMap::default();
         for line in table::SIGNATURES {
             for b in parse_line(line).unwrap_or_else(|e| panic!("built-in table: {e} in `{line}`")) {
-                by_name.entry(b.name).or_default().push(b);
+                by_name.entry(b.name()).or_default().push(b);
             }
         }
         Builtins { by_name }
     })
 }
 
-/// The overload of `name` whose parameters are exactly `params` (no conversions): for later stages
+/// The overload of `id` whose parameters are exactly `params` (no conversions): for later stages
 /// that build calls themselves. An array parameter of any length (`T[]`) takes any array of `T`,
 /// and a variadic overload takes any number of further arguments of its type.
-pub fn find(name: &str, params: &[Type]) -> Option<&'static Builtin> {
+pub fn find(id: BuiltinId, params: &[Type]) -> Option<&'static Builtin> {
     let fits = |want: Type, got: Type| {
         want == got || (want.array == Some(0) && got.array.is_some() && want.base == got.base)
     };
-    builtins().overloads(name).iter().find(|b| {
+    builtins().overloads(id.name()).iter().find(|b| {
         b.accepts_count(params.len())
             && params.iter().enumerate().all(|(i, &got)| b.param_type(i).is_some_and(|p| fits(p.ty, got)))
     })
@@ -335,6 +341,7 @@ fn parse_line(line: &'static str) -> Result<Vec<Builtin>, String> {
     let close = sig.rfind(')').ok_or("missing `)`")?;
     let head: Vec<&str> = sig[..open].split_whitespace().collect();
     let [ret, name] = head.as_slice() else { return Err("expected `RET NAME(`".into()) };
+    let id = BuiltinId::from_name(name).ok_or_else(|| format!("`{name}` has no `BuiltinId`"))?;
     let params_text = sig[open + 1..close].trim();
     let mut out = Vec::new();
     for t in generic {
@@ -363,7 +370,7 @@ fn parse_line(line: &'static str) -> Result<Vec<Builtin>, String> {
             }
         }
         let signature = if t.is_empty() { sig.to_string() } else { replace_word(sig, "T", t) };
-        out.push(Builtin { name, ret: Type::of(resolve(ret)?), params, rest, rate, context, signature });
+        out.push(Builtin { id, ret: Type::of(resolve(ret)?), params, rest, rate, context, signature });
     }
     Ok(out)
 }
@@ -385,13 +392,13 @@ mod tests {
     #[test]
     fn find_matches_parameter_types_exactly() {
         let (float, color, point) = (Type::FLOAT, Type::of(Base::Color), Type::of(Base::Point));
-        assert_eq!(find("mix", &[color, color, float]).map(|b| b.ret), Some(color));
-        assert!(find("mix", &[color, color, color]).is_none(), "no conversions");
-        assert_eq!(find("min", &[float, float, float, float]).map(|b| b.ret), Some(float));
+        assert_eq!(find(BuiltinId::Mix, &[color, color, float]).map(|b| b.ret), Some(color));
+        assert!(find(BuiltinId::Mix, &[color, color, color]).is_none(), "no conversions");
+        assert_eq!(find(BuiltinId::Min, &[float, float, float, float]).map(|b| b.ret), Some(float));
         let knots = Type { base: Base::Vector, array: Some(4) };
-        assert_eq!(find("spline", &[float, knots]).map(|b| b.ret), Some(Type::of(Base::Vector)));
-        assert_eq!(find("transform", &[Type::STRING, point]).map(|b| b.ret), Some(point));
-        assert!(find("nope", &[]).is_none());
+        assert_eq!(find(BuiltinId::Spline, &[float, knots]).map(|b| b.ret), Some(Type::of(Base::Vector)));
+        assert_eq!(find(BuiltinId::Transform, &[Type::STRING, point]).map(|b| b.ret), Some(point));
+        assert!(find(BuiltinId::Mix, &[]).is_none());
     }
 
     #[test]

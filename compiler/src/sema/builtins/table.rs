@@ -4,6 +4,8 @@
 //! Real-Time Shading Language as used in W. R. Mark's chapter of *Texturing & Modeling*, 3rd ed.
 //! (shared/seeds/002_a44091d2843c02ac.txt, lines 3225-3850). docs/builtins.md is the readable form
 //! of this table; keep the two in step.
+//! Every name here has its `BuiltinId` variant (`ir/builtin.rs`); a line with a name without one
+//! fails to parse.
 //!
 //! Left out on purpose:
 //! - The notation has no untyped variadics: `printf` and `format` are listed with `float...`, and

@@ -8,6 +8,7 @@ use super::Lowerer;
 use super::expr::suggest;
 use super::stmt::declared_type;
 use crate::diag::{Code, Diagnostic};
+use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Block, ExprId, ExprKind};
 use crate::sema::builtins::{self, Builtin, Context};
@@ -123,8 +124,9 @@ impl Lowerer<'_> {
         let builtin_call = user.is_empty();
         // A texture lookup's optional `"name", value` arguments start at the first string literal
         // after the file name; the overload is chosen by the arguments before them.
-        let (args, option_args) = match builtins::options(&callee.name) {
-            Some(_) if builtin_call => {
+        let builtin_id = if builtin_call { BuiltinId::from_name(&callee.name) } else { None };
+        let (args, option_args) = match builtin_id.and_then(builtins::options) {
+            Some(_) => {
                 let at = args
                     .iter()
                     .skip(1)
@@ -134,7 +136,7 @@ impl Lowerer<'_> {
             }
             _ => (args, &[][..]),
         };
-        if builtin_call && matches!(callee.name.as_str(), "printf" | "format") {
+        if matches!(builtin_id, Some(BuiltinId::Printf | BuiltinId::Format)) {
             return self.printf_call(callee, args, span, out);
         }
         let candidates: Vec<Candidate<'_>> = if builtin_call {
@@ -188,9 +190,9 @@ impl Lowerer<'_> {
         }
         let lowered: Vec<ExprId> = lowered.into_iter().collect::<Option<_>>()?;
         let types: Vec<Type> = lowered.iter().map(|&a| self.ty(a)).collect();
-        let message = matches!(callee.name.as_str(), "lightsource" | "surface");
-        if builtin_call && message && types.get(1).is_some_and(|t| t.base == Base::String) {
-            let help = if callee.name == "lightsource" {
+        let message = matches!(builtin_id, Some(BuiltinId::LightSource | BuiltinId::Surface));
+        if message && types.get(1).is_some_and(|t| t.base == Base::String) {
+            let help = if builtin_id == Some(BuiltinId::LightSource) {
                 "select lights by category with `illuminance(\"category\", ...)`: a light's `__category` parameter names its categories"
             } else {
                 "pass the string to this shader as a parameter of its own"
@@ -229,12 +231,12 @@ impl Lowerer<'_> {
                 self.inline_call(f, &args, span, outer, in_library, out)
             }
             Candidate::Builtin(b) => {
-                if matches!(b.name, "lightsource" | "surface")
+                if matches!(b.id, BuiltinId::LightSource | BuiltinId::Surface)
                     && !matches!(args[0].kind, ast::ExprKind::String(_))
                 {
                     self.error(Diagnostic::error(
                         Code::TypeMismatch,
-                        format!("`{}` needs the parameter's name as a string literal", b.name),
+                        format!("`{}` needs the parameter's name as a string literal", b.id),
                         args[0].span,
                         "not a string literal",
                     ));
@@ -256,7 +258,7 @@ impl Lowerer<'_> {
                         self.error(
                             Diagnostic::error(
                                 Code::OutsideLightLoop,
-                                format!("`{}` exists only inside `illuminance`", b.name),
+                                format!("`{}` exists only inside `illuminance`", b.id),
                                 callee.span,
                                 "it reads a parameter of the light being visited",
                             )
@@ -282,8 +284,14 @@ impl Lowerer<'_> {
                     self.lookup_options(callee, b, option_args, &mut converted, out)?;
                 }
                 // Space names given as literals are checked here; others are known per draw.
-                if matches!(b.name, "transform" | "vtransform" | "ntransform" | "ctransform") {
-                    let colour = b.name == "ctransform";
+                if matches!(
+                    b.id,
+                    BuiltinId::Transform
+                        | BuiltinId::VTransform
+                        | BuiltinId::NTransform
+                        | BuiltinId::CTransform
+                ) {
+                    let colour = b.id == BuiltinId::CTransform;
                     let literals: Vec<(smol_str::SmolStr, Span)> = converted
                         .iter()
                         .filter_map(|&a| match &self.expr_ref(a).kind {
@@ -301,31 +309,33 @@ impl Lowerer<'_> {
                 }
                 // `faceforward(N, I)` compares with the geometric normal: make that argument
                 // explicit, so that rates, derivatives and every backend see it.
-                if b.name == "faceforward"
+                if b.id == BuiltinId::FaceForward
                     && converted.len() == 2
                     && let Some(ng) = crate::sema::globals::lookup("Ng", self.kind, self.stanford)
                 {
                     let ng_expr = self.push_expr(ExprKind::Global(ng), Type::of(ng.ty), span);
                     let ng_expr = self.coerce(ng_expr, b.ret, "the reference normal")?;
                     let types = [b.ret, Type::of(crate::ir::types::Base::Vector), b.ret];
-                    if let Some(three) = crate::sema::builtins::find("faceforward", &types) {
+                    if let Some(three) = crate::sema::builtins::find(BuiltinId::FaceForward, &types) {
                         converted.push(ng_expr);
                         return Some(self.push_expr(ExprKind::Builtin(three, converted), three.ret, span));
                     }
                 }
-                if crate::stdlib::is_library_builtin(b.name) {
+                if crate::stdlib::LIBRARY_BUILTINS.contains(&b.id) {
                     return self.library_builtin(b, converted, span, out);
                 }
                 // A literal space name was checked where the library built-in was called.
-                if b.name == "__colour_space"
+                if b.id == BuiltinId::ColourSpace
                     && matches!(self.expr_ref(converted[0]).kind, ExprKind::Literal(_))
                 {
                     return Some(self.push_expr(ExprKind::Construct(Vec::new()), Type::VOID, span));
                 }
-                if b.name == "random"
+                if b.id == BuiltinId::Random
                     && self.uniform_random
-                    && let Some(u) =
-                        builtins::builtins().overloads("__uniform_random").iter().find(|u| u.ret == b.ret)
+                    && let Some(u) = builtins::builtins()
+                        .overloads(BuiltinId::UniformRandom.name())
+                        .iter()
+                        .find(|u| u.ret == b.ret)
                 {
                     return Some(self.push_expr(ExprKind::Builtin(u, converted), u.ret, span));
                 }
@@ -389,14 +399,14 @@ impl Lowerer<'_> {
                 let (one, zero) = (float(self, 1.0), float(self, 0.0));
                 let point = Type::of(Base::Point);
                 let corner = self.push_expr(ExprKind::Construct(vec![one, one, zero]), point, span);
-                let transform = builtins::find("transform", &[Type::STRING, Type::STRING, point])?;
+                let transform = builtins::find(BuiltinId::Transform, &[Type::STRING, Type::STRING, point])?;
                 let size =
                     self.push_expr(ExprKind::Builtin(transform, vec![ndc, raster, corner]), point, span);
                 let mut values = Vec::new();
-                for axis in ["xcomp", "ycomp"] {
+                for axis in [BuiltinId::XComp, BuiltinId::YComp] {
                     let comp = builtins::find(axis, &[point])?;
                     let c = self.push_expr(ExprKind::Builtin(comp, vec![size]), Type::FLOAT, span);
-                    let round = builtins::find("round", &[Type::FLOAT])?;
+                    let round = builtins::find(BuiltinId::Round, &[Type::FLOAT])?;
                     values.push(self.push_expr(ExprKind::Builtin(round, vec![c]), Type::FLOAT, span));
                 }
                 values.push(float(self, 1.0));
@@ -507,7 +517,7 @@ impl Lowerer<'_> {
             }
         }
         let b = builtins::builtins().overloads(name).first()?;
-        if name == "printf" {
+        if b.id == BuiltinId::Printf {
             self.error(
                 Diagnostic::warning(
                     Code::IgnoredFeature,
@@ -617,8 +627,8 @@ impl Lowerer<'_> {
         converted: &mut Vec<ExprId>,
         out: &mut Block,
     ) -> Option<()> {
-        let known = builtins::options(b.name).unwrap_or(&[]);
-        let honoured = builtins::honoured_options(b.name);
+        let known = builtins::options(b.id).unwrap_or(&[]);
+        let honoured = builtins::honoured_options(b.id);
         let mut ignored: Vec<String> = Vec::new();
         for pair in pairs.chunks(2) {
             let name_expr = &pair[0];
@@ -626,7 +636,7 @@ impl Lowerer<'_> {
                 self.error(
                     Diagnostic::error(
                         Code::UnknownOption,
-                        format!("`{}` expects an option name here", b.name),
+                        format!("`{}` expects an option name here", b.name()),
                         name_expr.span,
                         "expected a string literal naming an option",
                     )
@@ -637,7 +647,7 @@ impl Lowerer<'_> {
             let Some(value) = pair.get(1) else {
                 self.error(Diagnostic::error(
                     Code::UnknownOption,
-                    format!("option `{name}` of `{}` has no value", b.name),
+                    format!("option `{name}` of `{}` has no value", b.name()),
                     name_expr.span,
                     "expected `, value` after this name",
                 ));
@@ -648,13 +658,13 @@ impl Lowerer<'_> {
                 self.error(
                     Diagnostic::warning(
                         Code::UnknownOption,
-                        format!("`{}` has no option `{name}`; it is ignored", b.name),
+                        format!("`{}` has no option `{name}`; it is ignored", b.name()),
                         name_expr.span,
                         "unknown option name",
                     )
                     .with_help(format!(
                         "the options of `{}` are {}",
-                        b.name,
+                        b.name(),
                         names.join(", ")
                     )),
                 );
@@ -674,16 +684,16 @@ impl Lowerer<'_> {
             let list: Vec<String> = ignored.iter().map(|n| format!("`{n}`")).collect();
             let honoured_list: Vec<String> = honoured.iter().map(|n| format!("`{n}`")).collect();
             let note = if honoured.is_empty() {
-                format!("no option of `{}` has an effect yet", b.name)
+                format!("no option of `{}` has an effect yet", b.name())
             } else {
-                format!("the options of `{}` with an effect are {}", b.name, honoured_list.join(", "))
+                format!("the options of `{}` with an effect are {}", b.name(), honoured_list.join(", "))
             };
             self.error(
                 Diagnostic::warning(
                     Code::IgnoredFeature,
                     format!(
                         "`{}` ignores the option{} {}",
-                        b.name,
+                        b.name(),
                         if list.len() == 1 { "" } else { "s" },
                         list.join(", ")
                     ),
@@ -793,14 +803,14 @@ impl Lowerer<'_> {
         span: Span,
         out: &mut Block,
     ) -> Option<ExprId> {
-        let name = format!("__{}_{}", b.name, b.ret);
+        let name = format!("__{}_{}", b.name(), b.ret);
         let placeholder = ExprKind::Builtin(b, args.clone());
         let first = self.locals.len();
         let result = self.library_call(&name, args, placeholder, b.ret, span, out)?;
         // `patina explain` shows the implementation's variables under the built-in's name.
         for local in &mut self.locals[first..] {
             if local.function.as_deref() == Some(name.as_str()) {
-                local.function = Some(b.name.into());
+                local.function = Some(b.name().into());
             }
         }
         Some(result)

@@ -6,6 +6,7 @@ use super::{Lower, Val};
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, PrintArg, Reg, Ternary, Unary};
 use crate::backend::{POINT_INDEX, UNIFORM_RANDOM_POINT};
 use crate::diag::{Code as DiagCode, Diagnostic};
+use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
 use crate::sema::builtins::Builtin;
@@ -28,8 +29,19 @@ pub fn surface_flag_input(name: &str) -> String {
     format!("surface?({name})")
 }
 
+/// The error for a call the interpreter cannot run.
+fn no_implementation(b: &Builtin, span: crate::source::Span) -> Diagnostic {
+    Diagnostic::error(
+        DiagCode::NotExecutable,
+        format!("the interpreter has no implementation of `{}`", b.signature),
+        span,
+        "this call",
+    )
+}
+
 impl Lower<'_> {
-    /// A call of a built-in.
+    /// A call of a built-in: every built-in has its case here (the match on its id is
+    /// exhaustive), those that never reach the interpreter an internal error.
     pub(super) fn builtin(
         &mut self,
         b: &'static Builtin,
@@ -38,46 +50,46 @@ impl Lower<'_> {
     ) -> Result<Val, Diagnostic> {
         let span = self.shader.expr(id).span;
         let ret = self.shader.expr(id).ty;
-        if b.name == "integrate" {
+        if b.id == B::Integrate {
             return self.integrate(args[0]);
         }
         let vals: Vec<Val> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
         let f = |i: usize| vals[i].floats();
         let is_int = matches!(ret.base, Base::Int | Base::Uint);
         let signed = ret.base == Base::Int;
-        Ok(match b.name {
-            "radians" => self.scale(f(0), std::f64::consts::PI / 180.0),
-            "degrees" => self.scale(f(0), 180.0 / std::f64::consts::PI),
-            "sin" => self.each(Unary::Sin, f(0)),
-            "cos" => self.each(Unary::Cos, f(0)),
-            "tan" => self.each(Unary::Tan, f(0)),
-            "asin" => self.each(Unary::Asin, f(0)),
-            "acos" => self.each(Unary::Acos, f(0)),
-            "atan" if args.len() == 1 => self.each(Unary::Atan, f(0)),
-            "atan" => Val::Float(self.zip(Binary::Atan2, f(0), f(1))),
-            "pow" => Val::Float(self.zip(Binary::Pow, f(0), f(1))),
-            "exp" => self.each(Unary::Exp, f(0)),
-            "sqrt" => self.each(Unary::Sqrt, f(0)),
-            "inversesqrt" => self.each(Unary::InverseSqrt, f(0)),
-            "log" if args.len() == 1 => self.each(Unary::Log, f(0)),
-            "log" => {
+        Ok(match b.id {
+            B::Radians => self.scale(f(0), std::f64::consts::PI / 180.0),
+            B::Degrees => self.scale(f(0), 180.0 / std::f64::consts::PI),
+            B::Sin => self.each(Unary::Sin, f(0)),
+            B::Cos => self.each(Unary::Cos, f(0)),
+            B::Tan => self.each(Unary::Tan, f(0)),
+            B::Asin => self.each(Unary::Asin, f(0)),
+            B::Acos => self.each(Unary::Acos, f(0)),
+            B::Atan if args.len() == 1 => self.each(Unary::Atan, f(0)),
+            B::Atan => Val::Float(self.zip(Binary::Atan2, f(0), f(1))),
+            B::Pow => Val::Float(self.zip(Binary::Pow, f(0), f(1))),
+            B::Exp => self.each(Unary::Exp, f(0)),
+            B::Sqrt => self.each(Unary::Sqrt, f(0)),
+            B::InverseSqrt => self.each(Unary::InverseSqrt, f(0)),
+            B::Log if args.len() == 1 => self.each(Unary::Log, f(0)),
+            B::Log => {
                 let (x, base) = (self.emit.unary(Unary::Log, f(0)[0]), self.emit.unary(Unary::Log, f(1)[0]));
                 Val::Float(vec![self.emit.binary(Binary::Div, x, base)])
             }
-            "mod" => Val::Float(self.zip(Binary::Mod, f(0), f(1))),
-            "abs" if is_int && signed => {
+            B::Mod => Val::Float(self.zip(Binary::Mod, f(0), f(1))),
+            B::Abs if is_int && signed => {
                 Val::Int(vals[0].ints().iter().map(|x| self.emit.int_unary(IntUnary::Abs, *x)).collect())
             }
-            "abs" if is_int => vals[0].clone(),
-            "abs" => self.each(Unary::Abs, f(0)),
-            "sign" => self.each(Unary::Sign, f(0)),
-            "floor" => self.each(Unary::Floor, f(0)),
-            "ceil" => self.each(Unary::Ceil, f(0)),
-            "round" => self.each(Unary::Round, f(0)),
-            "min" | "max" if is_int => {
-                let op = match (b.name, signed) {
-                    ("min", true) => IntBinary::MinI,
-                    ("min", false) => IntBinary::MinU,
+            B::Abs if is_int => vals[0].clone(),
+            B::Abs => self.each(Unary::Abs, f(0)),
+            B::Sign => self.each(Unary::Sign, f(0)),
+            B::Floor => self.each(Unary::Floor, f(0)),
+            B::Ceil => self.each(Unary::Ceil, f(0)),
+            B::Round => self.each(Unary::Round, f(0)),
+            B::Min | B::Max if is_int => {
+                let op = match (b.id == B::Min, signed) {
+                    (true, true) => IntBinary::MinI,
+                    (true, false) => IntBinary::MinU,
                     (_, true) => IntBinary::MaxI,
                     _ => IntBinary::MaxU,
                 };
@@ -87,15 +99,15 @@ impl Lower<'_> {
                 }
                 Val::Int(acc)
             }
-            "min" | "max" => {
-                let op = if b.name == "min" { Binary::Min } else { Binary::Max };
+            B::Min | B::Max => {
+                let op = if b.id == B::Min { Binary::Min } else { Binary::Max };
                 let mut acc = f(0).to_vec();
                 for v in &vals[1..] {
                     acc = self.zip(op, &acc, v.floats());
                 }
                 Val::Float(acc)
             }
-            "clamp" if is_int => {
+            B::Clamp if is_int => {
                 let (lo_op, hi_op) = if signed {
                     (IntBinary::MaxI, IntBinary::MinI)
                 } else {
@@ -105,22 +117,22 @@ impl Lower<'_> {
                 let r = self.emit.int_binary(lo_op, x[0], lo[0]);
                 Val::Int(vec![self.emit.int_binary(hi_op, r, hi[0])])
             }
-            "clamp" => self.each3(Ternary::Clamp, f(0), f(1), f(2)),
-            "clamp01" => {
+            B::Clamp => self.each3(Ternary::Clamp, f(0), f(1), f(2)),
+            B::Clamp01 => {
                 let (zero, one) = (self.emit.float(0.0), self.emit.float(1.0));
                 self.each3(Ternary::Clamp, f(0), &[zero], &[one])
             }
-            "mix" => self.each3(Ternary::Mix, f(0), f(1), f(2)),
-            "step" => Val::Float(self.zip(Binary::Step, f(0), f(1))),
-            "smoothstep" => self.each3(Ternary::Smoothstep, f(0), f(1), f(2)),
-            "filterstep" if args.len() == 3 => self.filterstep_explicit(f(0)[0], f(1)[0], f(2)[0]),
-            "select" => {
+            B::Mix => self.each3(Ternary::Mix, f(0), f(1), f(2)),
+            B::Step => Val::Float(self.zip(Binary::Step, f(0), f(1))),
+            B::SmoothStep => self.each3(Ternary::Smoothstep, f(0), f(1), f(2)),
+            B::FilterStep if args.len() == 3 => self.filterstep_explicit(f(0)[0], f(1)[0], f(2)[0]),
+            B::Select => {
                 let c = self.truth(&vals[0]);
                 self.select(c, &vals[1], &vals[2])
             }
-            "random" | "__uniform_random" => {
+            B::Random | B::UniformRandom => {
                 let n = ret.base.components();
-                let regs = if b.name == "random" {
+                let regs = if b.id == B::Random {
                     let point = self.named_input(POINT_INDEX, Type::of(Base::Uint), false)[0];
                     (0..n)
                         .map(|_| {
@@ -141,7 +153,7 @@ impl Lower<'_> {
                 };
                 Val::Float(regs)
             }
-            "printf" => {
+            B::Printf => {
                 let format = match &vals[0] {
                     Val::Str(s) => s.to_string(),
                     _ => String::new(),
@@ -161,28 +173,28 @@ impl Lower<'_> {
                 self.emit.printf(format, printed);
                 Val::Void
             }
-            "xcomp" | "ycomp" | "zcomp" => {
-                let i = ["xcomp", "ycomp", "zcomp"].iter().position(|n| *n == b.name).unwrap_or(0);
+            B::XComp | B::YComp | B::ZComp => {
+                let i = [B::XComp, B::YComp, B::ZComp].iter().position(|n| *n == b.id).unwrap_or(0);
                 Val::Float(vec![f(0)[i]])
             }
-            "setxcomp" | "setycomp" | "setzcomp" => {
-                let i = ["setxcomp", "setycomp", "setzcomp"].iter().position(|n| *n == b.name).unwrap_or(0);
+            B::SetXComp | B::SetYComp | B::SetZComp => {
+                let i = [B::SetXComp, B::SetYComp, B::SetZComp].iter().position(|n| *n == b.id).unwrap_or(0);
                 let mut v = f(0).to_vec();
                 v[i] = f(1)[0];
                 self.write_output(args[0], &Val::Float(v), span)?;
                 Val::Void
             }
-            "comp" | "setcomp" => self.component(b.name, args, &vals, span)?,
-            "length" => Val::Float(vec![self.length(f(0))]),
-            "distance" => {
+            B::Comp | B::SetComp => self.component(b.id, args, &vals, span)?,
+            B::Length => Val::Float(vec![self.length(f(0))]),
+            B::Distance => {
                 let d = self.zip(Binary::Sub, f(0), f(1));
                 Val::Float(vec![self.length(&d)])
             }
-            "normalize" => Val::Float(self.normalize(f(0))),
-            "dot" => Val::Float(vec![self.dot(f(0), f(1))]),
-            "cross" => Val::Float(self.cross(f(0), f(1))),
-            "rgb" => Val::Float(f(0)[..3].to_vec()),
-            "faceforward" => {
+            B::Normalize => Val::Float(self.normalize(f(0))),
+            B::Dot => Val::Float(vec![self.dot(f(0), f(1))]),
+            B::Cross => Val::Float(self.cross(f(0), f(1))),
+            B::Rgb => Val::Float(f(0)[..3].to_vec()),
+            B::FaceForward => {
                 let nref = match vals.get(2) {
                     Some(v) => v.floats().to_vec(),
                     None => {
@@ -197,12 +209,12 @@ impl Lower<'_> {
                 let neg = self.each(Unary::Neg, f(0));
                 self.select(facing, &vals[0], &neg)
             }
-            "reflect" => Val::Float(self.reflect(f(0), f(1))),
-            "refract" => Val::Float(self.refract(f(0), f(1), f(2)[0])),
-            "ambient" => self.ambient(),
-            "lightsource" => self.lightsource(&vals[0], args[1], span)?,
-            "surface" => self.surface_message(&vals[0], &vals[1], args[1], span)?,
-            "concat" => Val::Str(
+            B::Reflect => Val::Float(self.reflect(f(0), f(1))),
+            B::Refract => Val::Float(self.refract(f(0), f(1), f(2)[0])),
+            B::Ambient => self.ambient(),
+            B::LightSource => self.lightsource(&vals[0], args[1], span)?,
+            B::Surface => self.surface_message(&vals[0], &vals[1], args[1], span)?,
+            B::Concat => Val::Str(
                 vals.iter()
                     .map(|v| match v {
                         Val::Str(s) => s.as_str(),
@@ -211,20 +223,34 @@ impl Lower<'_> {
                     .collect::<String>()
                     .into(),
             ),
-            "xyz_screen" => Val::Float(self.named_input("xyz_screen", ret, false)),
-            "Du" | "Dv" | "Deriv" | "filterwidth" | "filterstep" | "area" | "calculatenormal" => {
+            B::XyzScreen => Val::Float(self.named_input("xyz_screen", ret, false)),
+            B::Du | B::Dv | B::Deriv | B::FilterWidth | B::FilterStep | B::Area | B::CalculateNormal => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
-                    format!("`{}` reached the interpreter without being differentiated", b.name),
+                    format!("`{}` reached the interpreter without being differentiated", b.id),
                     span,
                     "this derivative",
                 )
                 .with_note("opt::derivs::differentiate must run before the interpreter's lowering"));
             }
-            name if crate::stdlib::is_library_builtin(name) => {
+            B::Noise
+            | B::Snoise
+            | B::Pnoise
+            | B::Cellnoise
+            | B::Diffuse
+            | B::Specular
+            | B::Phong
+            | B::SpecularBrdf
+            | B::CTransform
+            | B::Ptlined
+            | B::Rotate
+            | B::Translate
+            | B::Scale
+            | B::Determinant
+            | B::Fresnel => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
-                    format!("`{name}` reached the interpreter as a built-in"),
+                    format!("`{}` reached the interpreter as a built-in", b.id),
                     span,
                     "this call",
                 )
@@ -232,14 +258,14 @@ impl Lower<'_> {
                     "the semantic stage inlines its implementation from compiler/stdlib/builtins.sl",
                 ));
             }
-            "__texel2d" | "__texel3d" => {
+            B::Texel2d | B::Texel3d => {
                 let texture = self.texture_index(args[0])?;
                 let ints: Vec<Reg> = vals[1..].iter().map(|v| v.ints()[0]).collect();
                 let zero = self.emit.int(0);
                 let z = ints.get(2).copied().unwrap_or(zero);
                 Val::Float((0..4).map(|c| self.emit.texel(texture, c, ints[0], ints[1], z)).collect())
             }
-            "__texsize2d" | "__texsize3d" => {
+            B::Texsize2d | B::Texsize3d => {
                 let texture = self.texture_index(args[0])?;
                 let axis = match &self.shader.expr(args[1]).kind {
                     ExprKind::Literal(crate::ir::Literal::Int(a)) => (*a).clamp(0, 2) as u8,
@@ -247,26 +273,31 @@ impl Lower<'_> {
                 };
                 Val::Int(vec![self.emit.tex_size(texture, axis)])
             }
-            "texture" | "texture3d" | "environment" | "shadow" => {
+            B::Texture | B::Texture3d | B::Environment | B::Shadow => {
                 return Err(Diagnostic::error(
                     DiagCode::NotExecutable,
-                    format!("`{}` needs a bound texture, and evaluation at points has none", b.name),
+                    format!("`{}` needs a bound texture, and evaluation at points has none", b.id),
                     span,
                     "texture lookup",
                 )
                 .with_note("textures are bound by the runtime when a scene is rendered"));
             }
-            _ => match self.geometry(b, &vals, args, id)? {
+            B::Transform
+            | B::VTransform
+            | B::NTransform
+            | B::Transpose
+            | B::Affine
+            | B::Invert
+            | B::Depth
+            | B::ColourSpace
+            | B::Spline
+            | B::Match => match self.geometry(b, &vals, args, id)? {
                 Some(v) => v,
-                None => {
-                    return Err(Diagnostic::error(
-                        DiagCode::NotExecutable,
-                        format!("the interpreter has no implementation of `{}`", b.signature),
-                        span,
-                        "this call",
-                    ));
-                }
+                None => return Err(no_implementation(b, span)),
             },
+            // A string the semantic stage computes (`format` of literals): no call of it remains.
+            B::Format => return Err(no_implementation(b, span)),
+            B::Integrate => unreachable!("summed above, before its argument is lowered"),
         })
     }
 
@@ -346,7 +377,7 @@ impl Lower<'_> {
     /// `comp(c, i)`, `comp(m, row, col)`, `setcomp(c, i, x)`, `setcomp(m, row, col, x)`.
     fn component(
         &mut self,
-        name: &str,
+        which: B,
         args: &[ExprId],
         vals: &[Val],
         span: crate::source::Span,
@@ -371,7 +402,7 @@ impl Lower<'_> {
             index = self.emit.int_binary(IntBinary::Add, row, col);
         }
         let regs = vals[0].floats().to_vec();
-        if name == "comp" {
+        if which == B::Comp {
             let access = self.emit.consecutive(true, regs);
             let d = super::stmt::Dynamic { index, signed: true, len: width, stride: 1 };
             let a = super::stmt::Access { root: access, float: true, offset: 0, width: 1, dynamic: Some(d) };

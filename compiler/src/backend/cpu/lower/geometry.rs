@@ -19,6 +19,7 @@ use crate::backend::CLIP_INPUT;
 use crate::backend::cpu::code::{Binary, Compare, Reg};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::ExprId;
+use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
 use crate::sema::builtins::Builtin;
 
@@ -44,7 +45,8 @@ impl Rule {
 }
 
 impl Lower<'_> {
-    /// The built-ins of this module; `None` for names it does not know.
+    /// The built-ins of this module (`builtin` sends them here); `None` for the others, and for
+    /// a colour space or pattern that is not a string.
     pub(super) fn geometry(
         &mut self,
         b: &'static Builtin,
@@ -55,11 +57,11 @@ impl Lower<'_> {
         let ret = self.shader.expr(id).ty;
         let span = self.shader.expr(id).span;
         let arg_ty = |i: usize| self.shader.expr(args[i]).ty;
-        Ok(Some(match b.name {
-            "transform" | "vtransform" | "ntransform" => {
-                let rule = match b.name {
-                    "vtransform" => Rule::Vector,
-                    "ntransform" => Rule::Normal,
+        Ok(Some(match b.id {
+            B::Transform | B::VTransform | B::NTransform => {
+                let rule = match b.id {
+                    B::VTransform => Rule::Vector,
+                    B::NTransform => Rule::Normal,
                     _ => Rule::of(ret.base),
                 };
                 let value = vals[vals.len() - 1].floats().to_vec();
@@ -94,24 +96,24 @@ impl Lower<'_> {
                 };
                 Val::Float(out)
             }
-            "transpose" => {
+            B::Transpose => {
                 let n = if arg_ty(0).base == Base::Matrix3 { 3 } else { 4 };
                 let m = vals[0].floats();
                 Val::Float((0..n * n).map(|k| m[(k % n) * n + k / n]).collect())
             }
-            "affine" => {
+            B::Affine => {
                 let m = vals[0].floats();
                 Val::Float((0..9).map(|k| m[(k / 3) * 4 + k % 3]).collect())
             }
-            "invert" => Val::Float(self.invert(vals[0].floats(), arg_ty(0).base)),
-            "depth" => Val::Float(vec![self.depth(vals[0].floats()[2])]),
-            "__colour_space" => {
+            B::Invert => Val::Float(self.invert(vals[0].floats(), arg_ty(0).base)),
+            B::Depth => Val::Float(vec![self.depth(vals[0].floats()[2])]),
+            B::ColourSpace => {
                 let Val::Str(name) = &vals[0] else { return Ok(None) };
                 crate::stdlib::check_colour_space(name, span)?;
                 Val::Void
             }
-            "spline" => self.spline(vals, ret.base.components(), span)?,
-            "match" => {
+            B::Spline => self.spline(vals, ret.base.components(), span)?,
+            B::Match => {
                 let (Val::Str(pattern), Val::Str(subject)) = (&vals[0], &vals[1]) else { return Ok(None) };
                 match crate::backend::pattern::search(pattern, subject) {
                     Ok(found) => Val::Float(vec![self.emit.float(if found { 1.0 } else { 0.0 })]),

@@ -55,3 +55,14 @@ fn every_path_in_architecture_exists() {
     assert!(named > 50, "only {named} paths found: the scan no longer reads ARCHITECTURE.md's form");
     assert!(missing.is_empty(), "ARCHITECTURE.md names paths that do not exist: {missing:?}");
 }
+
+#[test]
+fn the_builtin_reference_counts_the_table() {
+    // docs/builtins.md opens with "N overloads under M names" (the language's, not the
+    // compiler's own `__` names).
+    let table = builtins();
+    let names: Vec<&str> = table.names().filter(|n| !n.starts_with("__")).collect();
+    let overloads: usize = names.iter().map(|n| table.overloads(n).len()).sum();
+    let line = format!("{overloads} overloads under {} names.", names.len());
+    assert!(document("docs/builtins.md").contains(&line), "docs/builtins.md should say: {line}");
+}

@@ -169,7 +169,7 @@ impl Reporter {
 /// A render error as printed: a shader's diagnostics as they are, anything else as one line.
 pub fn failure(e: RenderError) -> String {
     match e {
-        RenderError::Shader(diagnostics) => diagnostics.trim_end().to_string(),
+        RenderError::Shader(diagnostics) => diagnostics.to_string(),
         other => format!("error: {other}"),
     }
 }

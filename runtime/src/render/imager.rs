@@ -46,7 +46,7 @@ pub fn imager_program(
         return Err(RenderError::Input(format!("`{}` is not an imager shader", loaded.shader.name)));
     }
     let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
-    let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
+    let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| loaded.error(d))?;
     let values = evaluate_params(&cpu, &loaded.params, &spaces, None, &[])?;
     let textures = cpu
         .textures()

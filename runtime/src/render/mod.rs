@@ -12,8 +12,12 @@ mod progress;
 pub mod shadow;
 pub(crate) mod textures;
 
+use std::sync::Arc;
+
 use glam::Mat4;
 pub use patina_compiler::backend::wgsl::Lowering;
+use patina_compiler::diag::Diagnostic;
+use patina_compiler::source::SourceMap;
 use patina_compiler::syntax::ast::ShaderKind;
 
 use crate::gpu::Gpu;
@@ -31,9 +35,10 @@ pub use progress::{Progress, Silent, Unit};
 pub enum RenderError {
     /// A missing file, an unknown shader or parameter.
     Input(String),
-    /// A shader's diagnostics, rendered.
-    Shader(String),
-    /// The compiler could not build the program (an internal error or an unsupported feature).
+    /// A shader's diagnostics: its errors when checked, or why a backend could not compile it
+    /// (a limit, a feature the GPU lacks, an internal error), with their codes and places.
+    Shader(ShaderDiagnostics),
+    /// The program could not run (the interpreter's errors, a value the host could not compute).
     Compile(String),
     /// The GPU failed.
     Gpu(String),
@@ -42,15 +47,36 @@ pub enum RenderError {
 impl std::fmt::Display for RenderError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            RenderError::Input(m) | RenderError::Compile(m) | RenderError::Shader(m) => {
-                f.write_str(m.trim_end())
-            }
+            RenderError::Input(m) | RenderError::Compile(m) => f.write_str(m.trim_end()),
+            RenderError::Shader(d) => write!(f, "{d}"),
             RenderError::Gpu(m) => write!(f, "GPU: {}", m.trim_end()),
         }
     }
 }
 
 impl std::error::Error for RenderError {}
+
+/// A shader's diagnostics with the sources they point into: kept whole (codes, spans, labels,
+/// help) for tools, and shown by `Display` as a terminal shows them (codespan's text).
+#[derive(Clone, Debug)]
+pub struct ShaderDiagnostics {
+    /// The sources the spans point into.
+    pub sources: Arc<SourceMap>,
+    /// The diagnostics, in the order they were found.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl PartialEq for ShaderDiagnostics {
+    fn eq(&self, other: &ShaderDiagnostics) -> bool {
+        self.diagnostics == other.diagnostics
+    }
+}
+
+impl std::fmt::Display for ShaderDiagnostics {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(patina_compiler::diag::render_text(&self.sources, &self.diagnostics).trim_end())
+    }
+}
 
 /// Which renderer draws.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -5,6 +5,7 @@
 use std::sync::Arc;
 
 use patina_compiler::bind::{Consumed, Decision, Fixed};
+use patina_compiler::diag::Diagnostic;
 use patina_compiler::source::SourceMap;
 
 use glam::{Mat4, Vec3, Vec4};
@@ -19,8 +20,8 @@ use patina_compiler::opt::Prepared;
 use patina_compiler::split::Stages;
 use patina_compiler::syntax::ast::ShaderKind;
 
-use super::RenderError;
 use super::frame::{Frame, global_value};
+use super::{RenderError, ShaderDiagnostics};
 use crate::scene::{ParamValue, ShaderRef};
 
 /// A checked shader and the source it came from (kept for rendering diagnostics).
@@ -42,6 +43,14 @@ impl LoadedShader {
     /// The shader as the WGSL backend binds it beside a surface (a light or a displacement).
     pub fn bound(&self) -> BoundLight<'_> {
         BoundLight { shader: &self.shader, strings: self.strings.clone(), categories: Vec::new() }
+    }
+
+    /// A backend's refusal of this shader, as the render error that shows it at its place.
+    pub fn error(&self, diagnostic: Diagnostic) -> RenderError {
+        RenderError::Shader(ShaderDiagnostics {
+            sources: Arc::clone(&self.sources),
+            diagnostics: vec![diagnostic],
+        })
     }
 }
 
@@ -160,7 +169,11 @@ pub fn load_reading(
     let checked = patina_compiler::check_file(path, &shader.include_dirs)
         .map_err(|e| RenderError::Input(format!("cannot read {shown}: {}", e.reason)))?;
     if checked.has_errors() {
-        return Err(RenderError::Shader(checked.diagnostics_text()));
+        let diagnostics = checked.diagnostics.clone().into_vec();
+        return Err(RenderError::Shader(ShaderDiagnostics {
+            sources: Arc::new(checked.sources),
+            diagnostics,
+        }));
     }
     let Some(found) = checked.find_shader(Some(kind), shader.name.as_deref()) else {
         let what = match &shader.name {
@@ -303,7 +316,7 @@ pub struct SurfaceProgram {
 /// Compiles a light and computes its parameter values.
 pub fn light_program(loaded: LoadedShader, spaces: &[(String, Mat4)]) -> Result<LightProgram, RenderError> {
     let binding = Binding { lights: Vec::new(), strings: loaded.strings.clone() };
-    let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| RenderError::Compile(d.message))?;
+    let cpu = CpuProgram::compile(&loaded.shader, &binding).map_err(|d| loaded.error(d))?;
     let values = evaluate_params(&cpu, &loaded.params, spaces, None, &[])?;
     Ok(LightProgram { loaded, cpu, values, position: None })
 }
@@ -337,7 +350,7 @@ pub fn shaded_program(
     let beside = |d: Option<LoadedShader>| -> Result<Option<DisplacementProgram>, RenderError> {
         let Some(d) = d else { return Ok(None) };
         let binding = Binding { lights: Vec::new(), strings: d.strings.clone() };
-        let cpu = CpuProgram::compile(&d.shader, &binding).map_err(|e| RenderError::Compile(e.message))?;
+        let cpu = CpuProgram::compile(&d.shader, &binding).map_err(|e| d.error(e))?;
         let values = evaluate_params(&cpu, &d.params, spaces, Some(frame), &[])?;
         Ok(Some(DisplacementProgram { loaded: d, cpu, values }))
     };
@@ -352,8 +365,7 @@ pub fn shaded_program(
         };
         compile_object(&loaded.shader, &loaded.strings, &beside, lowering, HostPart::Interpreted)
     };
-    let CompiledObject { stages, gpu, host, vertex, fragment } =
-        compiled.map_err(|d| RenderError::Compile(d.message))?;
+    let CompiledObject { stages, gpu, host, vertex, fragment } = compiled.map_err(|d| loaded.error(d))?;
     let uniforms = evaluate_params(&host, &loaded.params, spaces, Some(frame), &stages.host_outputs())?;
     Ok(SurfaceProgram { loaded, stages, gpu, host, vertex, fragment, uniforms, displacement, atmosphere })
 }

@@ -501,8 +501,9 @@ fn the_bench_and_reference_scenes_load_and_their_knobs_resolve() {
     }
 }
 
-/// Issue 24: a scene's `include` list is searched by every shader's `#include` after the shader's
-/// own folder (relative to the scene); an empty entry is a one-line error.
+/// Issue 24: a scene's `include` list (relative to the scene) is searched by every shader's
+/// `#include` (a quoted one looks beside the including file first); an empty entry is a one-line
+/// error.
 #[test]
 fn a_scenes_include_list_is_searched_by_its_shaders() {
     let dir = std::env::temp_dir().join(format!("patina-scene-include-{}", std::process::id()));
@@ -581,4 +582,43 @@ fn a_stanford_light_is_placed_by_its_position() {
             file.display()
         ))
     );
+}
+
+/// Issue 23: a shader's diagnostics reach the caller of `render::prepare` whole, whether the check
+/// found them or a backend refused the checked shader: the code, the place in the file, and the
+/// text a terminal shows.
+#[test]
+fn a_shaders_diagnostics_keep_their_codes_and_places_through_the_renderer() {
+    let dir = std::env::temp_dir().join(format!("patina-scene-diagnostics-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("scene.toml");
+    let prepare = |source: &str, params: &str| {
+        std::fs::write(dir.join("s.sl"), source).unwrap();
+        let text = format!(
+            "[output]\nwidth = 8\nheight = 8\n[camera]\nfrom = [0, 0, -3]\nto = [0, 0, 0]\n\
+             [[object]]\nmesh = \"sphere\"\nshader = \"s.sl\"\n{params}"
+        );
+        let scene = Scene::parse(&text, &file, &dir).unwrap_or_else(|e| panic!("{e}"));
+        match patina_runtime::render::prepare(&scene) {
+            Err(patina_runtime::render::RenderError::Shader(d)) => d,
+            Err(other) => panic!("not a shader's diagnostics: {other:?}"),
+            Ok(_) => panic!("prepared"),
+        }
+    };
+    // The check's error.
+    let d = prepare("surface s() {\n    Ci = undefined_thing;\n}\n", "");
+    assert_eq!(d.diagnostics.len(), 1);
+    assert_eq!(d.diagnostics[0].code.as_str(), "E0501");
+    assert_eq!(d.sources.text(d.diagnostics[0].primary_span()), "undefined_thing");
+    let shown = d.to_string();
+    assert!(shown.contains("error[E0501]") && shown.contains("s.sl:2:10"), "{shown}");
+    // A backend's refusal of a shader that checks: a spline basis named by the scene.
+    let d = prepare(
+        "surface s(string basis = \"bezier\") {\n    Ci = spline(basis, s, 0, 1, 2, 3);\n}\n",
+        "params = { basis = \"cardinal\" }\n",
+    );
+    assert_eq!(d.diagnostics.len(), 1);
+    assert_eq!(d.diagnostics[0].code.as_str(), "E0701", "{d}");
+    assert!(d.sources.text(d.diagnostics[0].primary_span()).starts_with("spline("), "{d}");
+    assert!(d.to_string().contains("s.sl:2:"), "{d}");
 }

@@ -13,6 +13,7 @@ pub mod source;
 pub mod split;
 pub mod stdlib;
 pub mod syntax;
+pub mod verify;
 
 use std::path::{Path, PathBuf};
 

@@ -5,7 +5,7 @@
 //! program with a diagnostic; an internal error (E0799) on a program that checked clean is a bug,
 //! and so is a panic. The one E0799 that is not a bug is the WGSL translator's "cannot translate
 //! this yet" (a construct only the interpreter runs, such as `break 2`): it is a known limit.
-//! The IR is verified (`ir::verify`) after the semantic stage, `opt::Prepared::new` and the split: the
+//! The IR is verified (`verify`) after the semantic stage, `opt::Prepared::new` and the split: the
 //! passes do so themselves in debug builds, and this target does it again so that an optimized
 //! fuzzing build (`cargo fuzz run -O`) checks it too.
 #![no_main]
@@ -16,7 +16,7 @@ use patina_compiler::backend::cpu::CpuProgram;
 use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::backend::wgsl;
 use patina_compiler::diag::{Code, Diagnostic};
-use patina_compiler::ir::verify::{Pass, VerifyError, verify, verify_stages};
+use patina_compiler::verify::{Pass, VerifyError, verify, verify_stages};
 use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::MemoryLoader;

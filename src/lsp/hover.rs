@@ -5,10 +5,10 @@ use std::fmt::Write;
 
 use lsp_types::{Hover, HoverContents, MarkupContent, MarkupKind, Position};
 use patina_compiler::ir::LocalKind;
+use patina_compiler::ir::global::Styles;
 use patina_compiler::ir::types::{Base, Rate};
 use patina_compiler::sema::builtins::builtins;
 use patina_compiler::sema::explain::stage;
-use patina_compiler::sema::globals::Styles;
 use patina_compiler::source::Span;
 use patina_compiler::stdlib;
 

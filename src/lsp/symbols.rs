@@ -8,9 +8,9 @@
 use rustc_hash::FxHashMap;
 use smol_str::SmolStr;
 
+use patina_compiler::ir::global::Global;
 use patina_compiler::ir::{ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
 use patina_compiler::sema::builtins::builtins;
-use patina_compiler::sema::globals::Global;
 use patina_compiler::source::{FileId, SourceMap, Span};
 use patina_compiler::stdlib;
 use patina_compiler::syntax::ast::{Item, Module};

@@ -16,9 +16,9 @@ mod fold;
 mod prune;
 mod strings;
 
-use crate::ir::verify::{Pass, assert_valid};
 use crate::ir::{LocalKind, Shader};
 use crate::source::Span;
+use crate::verify::{Pass, assert_valid};
 
 /// The value a scene fixes for one parameter: its components, in the language's order.
 #[derive(Clone, Debug, PartialEq)]

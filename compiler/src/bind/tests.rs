@@ -299,7 +299,7 @@ fn a_fixed_matrix_becomes_a_matrix_of_float_literals() {
     let original = shader("surface m(matrix M = 1) {\n    Ci = color (comp(M, 0, 1));\n}\n");
     let values: Vec<f64> = (0..16).map(f64::from).collect();
     let bound = specialize_all(&original, &fixed(&[("M", &values)]));
-    crate::ir::verify::verify(&bound.shader, crate::ir::verify::Pass::Bind("test")).expect("valid IR");
+    crate::verify::verify(&bound.shader, crate::verify::Pass::Bind("test")).expect("valid IR");
     let parts = bound
         .shader
         .exprs

@@ -3,6 +3,13 @@
 //! dispatches on the id, never on the name, and a stage that must decide something for every
 //! built-in (the derivative rule of `opt::derivs`, what each backend emits) matches on it
 //! exhaustively, so that a new built-in does not compile until each of them has its case.
+//!
+//! [`Builtin`] is one overload, the record a call in the IR points to
+//! (`ExprKind::Builtin(&'static Builtin, args)`): its parameter and result types, its [`RateRule`]
+//! and its [`Context`]. The IR owns the record; the semantic stage owns the table of them
+//! (`sema::builtins::builtins`, parsed from the signature lines) and the overload resolution.
+
+use super::types::Type;
 
 /// Defines [`BuiltinId`] from `Variant = "name"` pairs, with its name table.
 macro_rules! builtin_ids {
@@ -141,24 +148,81 @@ impl std::fmt::Display for BuiltinId {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::BuiltinId;
-    use crate::sema::builtins::builtins;
+/// How a built-in's result rate follows from its arguments.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum RateRule {
+    /// The highest rate among the arguments (most functions).
+    Max,
+    /// A screen-space derivative: fragment rate when an argument varies per vertex or fragment;
+    /// on constant or primitive-group arguments the derivative is exactly 0 at their rate.
+    Derivative,
+    /// Always at least fragment rate (`random`, screen position).
+    Fragment,
+    /// Always at least primitive-group rate: one value per draw (`random()` where a uniform value
+    /// is wanted, as `__uniform_random`).
+    Uniform,
+    /// Sums over the bound lights (`ambient`, `diffuse`, `specular`, ...): fragment rate.
+    Lights,
+    /// `integrate`: the argument's rate without `perlight`.
+    Integrate,
+}
 
-    #[test]
-    fn every_table_name_has_an_id_and_back() {
-        let table = builtins();
-        for name in table.names() {
-            let id = BuiltinId::from_name(name).unwrap_or_else(|| panic!("`{name}` has no BuiltinId"));
-            assert_eq!(id.name(), name);
-            assert!(table.overloads(name).iter().all(|b| b.id == id), "`{name}`'s overloads carry its id");
-        }
-        for &id in BuiltinId::ALL {
-            assert!(!table.overloads(id.name()).is_empty(), "`{id}` is in no line of the table");
-            assert_eq!(BuiltinId::from_name(id.name()), Some(id));
-        }
-        assert_eq!(table.names().count(), BuiltinId::ALL.len());
-        assert_eq!(BuiltinId::from_name("trace"), None);
+/// Where a built-in may be called.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Context {
+    /// Anywhere.
+    Any,
+    /// Only in surface shaders (and functions they call).
+    Surface,
+    /// Only in light shaders.
+    Light,
+    /// Only in light and volume (atmosphere) shaders: those bound with a surface.
+    LightOrVolume,
+    /// Only inside `illuminance`, where one light is visited.
+    Illuminance,
+}
+
+/// A parameter of a built-in.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub struct BuiltinParam {
+    /// Its type (`array: Some(0)` for an array of any length).
+    pub ty: Type,
+    /// Whether the built-in writes it.
+    pub output: bool,
+}
+
+/// One overload of a built-in function.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Builtin {
+    /// Which built-in it is (its name).
+    pub id: BuiltinId,
+    /// The result type.
+    pub ret: Type,
+    /// The fixed parameters.
+    pub params: Vec<BuiltinParam>,
+    /// The type of any further arguments, for variadic functions.
+    pub rest: Option<Type>,
+    /// How the result's rate is decided.
+    pub rate: RateRule,
+    /// Where it may be called.
+    pub context: Context,
+    /// The signature as written in the table, for diagnostics.
+    pub signature: String,
+}
+
+impl Builtin {
+    /// Its name.
+    pub fn name(&self) -> &'static str {
+        self.id.name()
+    }
+
+    /// Whether `n` arguments can be passed.
+    pub fn accepts_count(&self, n: usize) -> bool {
+        if self.rest.is_some() { n >= self.params.len() } else { n == self.params.len() }
+    }
+
+    /// The type expected for argument `i`.
+    pub fn param_type(&self, i: usize) -> Option<BuiltinParam> {
+        self.params.get(i).copied().or_else(|| self.rest.map(|ty| BuiltinParam { ty, output: false }))
     }
 }

@@ -5,19 +5,18 @@
 //! already inlined (each call is an [`Stmt::Inline`] block), so every expression has one type, one
 //! rate and one span. Expressions are pure; every effect is a statement.
 
-pub mod build;
 pub mod builtin;
+pub mod global;
 pub mod stores;
 pub mod types;
-pub mod verify;
 
 use smol_str::SmolStr;
 
-use crate::sema::builtins::Builtin;
-use crate::sema::globals::Global;
 use crate::source::Span;
 use crate::syntax::ast::ShaderKind;
-use types::{Rate, Type};
+use builtin::{Builtin, RateRule};
+use global::Global;
+use types::{Frequency, Rate, Type};
 
 /// Index of a local variable (parameters included) in [`Shader::locals`].
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -377,6 +376,39 @@ impl Shader {
             Place::Local(l) => self.local(*l).ty,
             Place::Global(g) => Type::of(g.ty),
             Place::Index(inner, _) => self.place_type(inner).element(),
+        }
+    }
+
+    /// The rate an expression of this kind has in this shader, from its operands' rates, by the
+    /// rules of `sema::rates` (for builders of new expressions, `opt::build`, and for `verify` to
+    /// check the rates pass).
+    pub fn rate_of(&self, kind: &ExprKind) -> Rate {
+        let rate = |id: ExprId| self.expr(id).rate;
+        let join = |ids: &[ExprId]| ids.iter().fold(Rate::CONSTANT, |r, &id| r.join(rate(id)));
+        match kind {
+            ExprKind::Literal(_) => Rate::CONSTANT,
+            ExprKind::Seed(..) => Rate::FRAGMENT,
+            ExprKind::Local(l) => self.local(*l).rate,
+            ExprKind::Global(g) => Rate { frequency: g.frequency, perlight: g.perlight },
+            ExprKind::Unary(_, a) | ExprKind::Convert(a) => rate(*a),
+            ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => join(&[*a, *b]),
+            ExprKind::Select(c, a, b) => join(&[*c, *a, *b]),
+            ExprKind::Construct(parts) => join(parts),
+            ExprKind::FromSpace { space, value } if space != "current" => rate(*value).join(Rate::UNIFORM),
+            ExprKind::FromSpace { value, .. } => rate(*value),
+            ExprKind::Builtin(b, args) => {
+                let rate = join(args);
+                match b.rate {
+                    RateRule::Max => rate,
+                    RateRule::Derivative if rate.frequency >= Frequency::Vertex => {
+                        Rate { frequency: Frequency::Fragment, ..rate }
+                    }
+                    RateRule::Derivative => rate,
+                    RateRule::Fragment | RateRule::Lights => rate.join(Rate::FRAGMENT),
+                    RateRule::Uniform => rate.join(Rate::UNIFORM),
+                    RateRule::Integrate => Rate { perlight: false, ..rate },
+                }
+            }
         }
     }
 }

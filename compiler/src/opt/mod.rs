@@ -7,6 +7,7 @@
 //! that every backend filters the same way; `shadow` does the same for shadow-map lookups
 //! (percentage-closer filtering over depth texels, the map carrying its own matrix).
 
+pub mod build;
 pub mod derivs;
 pub mod shadow;
 pub mod textures;
@@ -23,14 +24,14 @@ pub struct Prepared(Shader);
 impl Prepared {
     /// Runs a checked (and possibly bound) shader through the shared passes.
     ///
-    /// Each pass checks its own result in debug builds (`ir::verify`); the whole is checked once
+    /// Each pass checks its own result in debug builds (`verify`); the whole is checked once
     /// more for what the backends rely on, all three passes' guarantees at once.
     pub fn new(mut shader: Shader) -> Prepared {
         textures::footprints(&mut shader);
         derivs::differentiate(&mut shader);
         textures::expand(&mut shader);
         shadow::expand(&mut shader);
-        crate::ir::verify::assert_valid(&shader, crate::ir::verify::Pass::Prepare);
+        crate::verify::assert_valid(&shader, crate::verify::Pass::Prepare);
         Prepared(shader)
     }
 
@@ -59,7 +60,7 @@ impl std::ops::Deref for Prepared {
     }
 }
 
-/// Tests break prepared IR by hand to see `ir::verify` refuse it.
+/// Tests break prepared IR by hand to see `verify` refuse it.
 #[cfg(test)]
 impl std::ops::DerefMut for Prepared {
     fn deref_mut(&mut self) -> &mut Shader {

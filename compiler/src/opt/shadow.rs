@@ -34,10 +34,10 @@
 //! Runs after `opt::derivs` and before the split, rewriting each lookup in place at its rate.
 
 use super::textures::{constant, option};
-use crate::ir::build::Builder;
 use crate::ir::builtin::BuiltinId;
 use crate::ir::types::Type;
 use crate::ir::{BinaryOp, ExprId, ExprKind, Shader};
+use crate::opt::build::Builder;
 
 /// Taps when a lookup names no `"samples"` (or names a value that is not a constant).
 pub const DEFAULT_SAMPLES: u32 = 16;
@@ -88,7 +88,7 @@ pub(crate) fn expand(shader: &mut Shader) {
             e.rate = e.rate.join(rate);
         }
     }
-    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Shadows);
+    crate::verify::assert_valid(shader, crate::verify::Pass::Shadows);
 }
 
 /// The `"name", value` pairs after the positional arguments.

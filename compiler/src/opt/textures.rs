@@ -53,10 +53,10 @@
 //! split; rewrites each lookup in place, appending the expressions it needs, all at the lookup's
 //! rate.
 
-use crate::ir::build::Builder;
 use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Base, Type};
 use crate::ir::{BinaryOp, ExprId, ExprKind, Literal, Shader};
+use crate::opt::build::Builder;
 use crate::sema::globals;
 
 /// Rewrites every `texture`, `texture3d` and `environment` lookup of `shader` into texel fetches
@@ -114,7 +114,7 @@ pub(crate) fn expand(shader: &mut Shader) {
             e.rate = e.rate.join(rate);
         }
     }
-    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Textures);
+    crate::verify::assert_valid(shader, crate::verify::Pass::Textures);
 }
 
 /// RenderMan's channel selection, `texture("name"[k], ...)`: the texture's name and the first
@@ -169,7 +169,7 @@ pub(crate) fn footprints(shader: &mut Shader) {
             args.extend([name, width]);
         }
     }
-    crate::ir::verify::assert_valid(shader, crate::ir::verify::Pass::Footprints);
+    crate::verify::assert_valid(shader, crate::verify::Pass::Footprints);
 }
 
 /// The value of option `name` among a lookup's trailing `"name", value` pairs (a numeric

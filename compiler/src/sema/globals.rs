@@ -1,62 +1,11 @@
 //! Predefined variables: what each kind of shader can read and write without declaring it, with a
 //! fixed type and rate (RenderMan's tables of section 12 of the RI spec, and Stanford's predefined
-//! variables).
+//! variables). The record of one, [`Global`], is the IR's (`ir/global.rs`); this module owns the
+//! table and its lookup.
 
+use crate::ir::global::{Access, Global, Scope, Styles};
 use crate::ir::types::{Base, Frequency};
 use crate::syntax::ast::ShaderKind;
-
-/// Whether a shader may read or write a predefined variable.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum Access {
-    /// Read only.
-    Read,
-    /// Read and written (an input the shader may change, or an output it may read back).
-    ReadWrite,
-}
-
-/// Which surface style sees a predefined variable.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum Styles {
-    /// RenderMan-style shaders and functions.
-    RenderMan,
-    /// Stanford-style shaders and functions.
-    Stanford,
-    /// Both.
-    Both,
-}
-
-/// Where in a shader a predefined variable exists.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum Scope {
-    /// Everywhere in the shader.
-    Anywhere,
-    /// In a surface shader only inside `illuminance` (one value per light: `L`, `Cl`); in Stanford
-    /// surface shaders anywhere, as a `perlight` value.
-    PerLight,
-}
-
-/// A predefined variable.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub struct Global {
-    /// Its name.
-    pub name: &'static str,
-    /// Its type.
-    pub ty: Base,
-    /// How often it changes.
-    pub frequency: Frequency,
-    /// Whether there is one value per light.
-    pub perlight: bool,
-    /// Read only, or read and written.
-    pub access: Access,
-    /// The shader kinds that have it.
-    pub shaders: &'static [ShaderKind],
-    /// The styles that see it.
-    pub styles: Styles,
-    /// Where it exists.
-    pub scope: Scope,
-    /// What it is, for `patina explain` and the docs.
-    pub doc: &'static str,
-}
 
 const SURFACE: &[ShaderKind] = &[ShaderKind::Surface];
 const LIGHT: &[ShaderKind] = &[ShaderKind::Light];
@@ -202,15 +151,7 @@ pub fn is_predefined(name: &str) -> bool {
 
 /// The predefined variable `name` as seen from a shader of `kind` written in `stanford` style.
 pub fn lookup(name: &str, kind: ShaderKind, stanford: bool) -> Option<&'static Global> {
-    GLOBALS.iter().find(|g| {
-        g.name == name
-            && g.shaders.contains(&kind)
-            && match g.styles {
-                Both => true,
-                RenderMan => !stanford,
-                Stanford => stanford,
-            }
-    })
+    GLOBALS.iter().find(|g| g.name == name && g.seen_by(kind, stanford))
 }
 
 #[cfg(test)]

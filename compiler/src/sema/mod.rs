@@ -15,8 +15,8 @@ use rustc_hash::FxHashMap;
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::Program;
-use crate::ir::verify::Pass;
 use crate::syntax::ast::{self, Item};
+use crate::verify::Pass;
 use lower::{FunctionTable, Functions};
 
 /// Collects the module's top-level functions, reporting duplicates. (Functions defined inside
@@ -88,13 +88,13 @@ pub fn check(
         let Item::Shader(s) = item else { continue };
         match lower::lower_shader(s, &globals, &table, &mut shared, diags) {
             (mut shader, false) => {
-                crate::ir::verify::assert_valid(&shader, Pass::Lower);
+                crate::verify::assert_valid(&shader, Pass::Lower);
                 let errors = diags.iter().filter(|d| d.is_error()).count();
                 rates::infer(&mut shader, diags);
                 // A shader with rate errors keeps values its variables' rates do not allow; the
                 // caller sees the errors and goes no further.
                 if diags.iter().filter(|d| d.is_error()).count() == errors {
-                    crate::ir::verify::assert_valid(&shader, Pass::Rates);
+                    crate::verify::assert_valid(&shader, Pass::Rates);
                 }
                 program.shaders.push(shader);
             }

@@ -8,9 +8,9 @@
 //! operands. The lattice is finite and the joins monotone, so it terminates.
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::builtin::RateRule;
 use crate::ir::types::{Frequency, Rate};
 use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
-use crate::sema::builtins::RateRule;
 use crate::source::Span;
 
 /// Why a value has its rate: the place to point at.
@@ -63,7 +63,7 @@ struct Analysis<'s> {
 #[derive(Copy, Clone)]
 enum Target {
     Local(LocalId),
-    Global(&'static crate::sema::globals::Global),
+    Global(&'static crate::ir::global::Global),
 }
 
 fn root(place: &Place) -> Target {

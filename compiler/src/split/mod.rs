@@ -118,7 +118,7 @@ impl Stages {
 /// put in a stage that cannot compute it.
 pub fn split(shader: &Prepared) -> Result<Stages, Diagnostic> {
     let stages = slice::split(shader, false)?;
-    crate::ir::verify::assert_valid_stages(&stages);
+    crate::verify::assert_valid_stages(&stages);
     Ok(stages)
 }
 
@@ -128,6 +128,6 @@ pub fn split(shader: &Prepared) -> Result<Stages, Diagnostic> {
 /// what the host would have computed once per draw (the cost of needing no host code).
 pub fn split_folding_host(shader: &Prepared) -> Result<Stages, Diagnostic> {
     let stages = slice::split(shader, true)?;
-    crate::ir::verify::assert_valid_stages(&stages);
+    crate::verify::assert_valid_stages(&stages);
     Ok(stages)
 }

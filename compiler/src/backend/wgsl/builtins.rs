@@ -13,10 +13,10 @@ use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
 
 use super::body::{Translator, Value};
 use crate::diag::{Code, Diagnostic};
+use crate::ir::builtin::Builtin;
 use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind, Literal};
-use crate::sema::builtins::Builtin;
 
 impl Translator<'_> {
     /// A call of a built-in: every built-in has its case here (the match on its id is

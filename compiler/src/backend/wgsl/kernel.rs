@@ -69,7 +69,7 @@ pub const KERNEL_WORKGROUP: u32 = 64;
 /// Where a named value lives in the module.
 enum Target {
     Local(crate::ir::LocalId),
-    Global(&'static crate::sema::globals::Global, Option<usize>),
+    Global(&'static crate::ir::global::Global, Option<usize>),
     Seed(Input, Axis),
     /// A private variable of the module by name (`xyz_screen`).
     Private(&'static str),

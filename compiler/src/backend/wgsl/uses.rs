@@ -4,8 +4,8 @@
 use crate::ir::builtin::BuiltinId;
 use rustc_hash::FxHashSet;
 
+use crate::ir::global::Global;
 use crate::ir::{Axis, Block, ExprId, ExprKind, Input, LocalId, Place, Shader, Stmt};
-use crate::sema::globals::Global;
 
 /// The inputs and variables a body touches.
 #[derive(Default)]

@@ -12,11 +12,12 @@
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::calls;
+use crate::ir::builtin::Builtin;
 use crate::ir::builtin::BuiltinId;
+use crate::ir::global::Global;
 use crate::ir::types::{Frequency, Rate, Type};
 use crate::ir::{Block, ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
-use crate::sema::builtins::Builtin;
-use crate::sema::globals::{self, Global};
+use crate::sema::globals;
 
 /// What the analysis found.
 #[derive(Debug, Default)]

@@ -8,10 +8,10 @@ use std::f64::consts::PI;
 
 use super::analysis::dtype;
 use super::rules::Diff;
+use crate::ir::builtin::Builtin;
 use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, BinaryOp, ExprId};
-use crate::sema::builtins::Builtin;
 
 /// How the derivative pass treats a call of a built-in.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -3,10 +3,10 @@
 //! library code, `compiler/stdlib/builtins.sl`, differentiated through it.)
 
 use super::rules::Diff;
+use crate::ir::builtin::Builtin;
 use crate::ir::builtin::BuiltinId;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, BinaryOp, ExprId};
-use crate::sema::builtins::Builtin;
 
 impl Diff<'_> {
     /// The derivative of `transform`, `vtransform` or `ntransform` (`b`) with arguments `a`.

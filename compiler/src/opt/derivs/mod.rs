@@ -46,7 +46,7 @@ mod rules;
 mod tests;
 
 use crate::ir::Shader;
-use crate::ir::build::Builder;
+use crate::opt::build::Builder;
 use consumers::SurfaceParams;
 use rules::Diff;
 
@@ -86,5 +86,5 @@ pub(crate) fn differentiate(shader: &mut Shader) {
         diff.replace(c, uv);
     }
     diff.b.shader.body = new_body;
-    crate::ir::verify::assert_valid(diff.b.shader, crate::ir::verify::Pass::Derivatives);
+    crate::verify::assert_valid(diff.b.shader, crate::verify::Pass::Derivatives);
 }

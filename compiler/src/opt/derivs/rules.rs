@@ -8,9 +8,9 @@
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::analysis::{dtype, varies};
-use crate::ir::build::Builder;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, BinaryOp, ExprId, ExprKind, LocalId, UnaryOp};
+use crate::opt::build::Builder;
 
 /// The derivative builder: shadows of the variables, memoised derivatives, and the arena.
 pub(super) struct Diff<'s> {

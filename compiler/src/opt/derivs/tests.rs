@@ -4,9 +4,10 @@
 
 use super::analysis::dtype;
 use super::differentiate;
+use crate::ir::builtin::RateRule;
 use crate::ir::types::{Base, Type};
 use crate::ir::{Axis, BinaryOp, Block, ExprId, ExprKind, Input, Literal, Place, Shader, Stmt, UnaryOp};
-use crate::sema::builtins::{self, RateRule};
+use crate::sema::builtins;
 use crate::syntax::preprocess::MemoryLoader;
 
 /// The shaders of `src`, checked without errors.

@@ -295,13 +295,16 @@ mod tests {
         assert!(has("max", "uint max(uint, uint, uint...)"));
         let random = table.overloads("random");
         assert_eq!(random.len(), 4);
-        assert!(random.iter().all(|b| b.rate == super::super::RateRule::Fragment));
+        assert!(random.iter().all(|b| b.rate == crate::ir::builtin::RateRule::Fragment));
         let diffuse = &table.overloads("diffuse")[0];
         assert_eq!(diffuse.context, super::super::Context::Surface);
         assert!(table.overloads("trace").is_empty() && table.overloads("option").is_empty());
         assert_eq!(table.overloads("printf")[0].ret, crate::ir::types::Type::VOID);
         assert!(
-            table.overloads("__uniform_random").iter().all(|b| b.rate == super::super::RateRule::Uniform)
+            table
+                .overloads("__uniform_random")
+                .iter()
+                .all(|b| b.rate == crate::ir::builtin::RateRule::Uniform)
         );
         let fresnel = table.overloads("fresnel");
         assert!(fresnel.iter().any(|b| b.params.len() == 7 && b.params[6].output));

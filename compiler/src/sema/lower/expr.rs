@@ -2,10 +2,11 @@
 
 use super::{LightLoop, Lowerer};
 use crate::diag::{Code, Diagnostic};
+use crate::ir::global::{Access, Global, Scope};
 use crate::ir::types::{Base, Rate, Type};
 use crate::ir::{BinaryOp, Block, ExprId, ExprKind, Literal, LocalKind, Place, UnaryOp};
 use crate::sema::convert;
-use crate::sema::globals::{self, Access, Scope};
+use crate::sema::globals;
 use crate::syntax::ast;
 
 /// The coordinate systems point-like values can be given in.
@@ -204,7 +205,7 @@ impl Lowerer<'_> {
     }
 
     /// The predefined variable `name`, checking that it exists here.
-    fn global(&mut self, name: &ast::Ident) -> Option<&'static globals::Global> {
+    fn global(&mut self, name: &ast::Ident) -> Option<&'static Global> {
         let Some(g) = globals::lookup(&name.name, self.kind, self.stanford) else {
             let other_kind = globals::GLOBALS.iter().find(|g| g.name == name.name);
             let mut d = match other_kind {

@@ -6,10 +6,10 @@ use super::{Lower, Val};
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, PrintArg, Reg, Ternary, Unary};
 use crate::backend::{POINT_INDEX, UNIFORM_RANDOM_POINT};
 use crate::diag::{Code as DiagCode, Diagnostic};
+use crate::ir::builtin::Builtin;
 use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
-use crate::sema::builtins::Builtin;
 
 /// The name of the input that gives `lightsource(name, ...)` light `k`'s parameter `name` at
 /// each point: the caller reads it from the light's program after running it.

@@ -19,9 +19,9 @@ use crate::backend::CLIP_INPUT;
 use crate::backend::cpu::code::{Binary, Compare, Reg};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::ExprId;
+use crate::ir::builtin::Builtin;
 use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
-use crate::sema::builtins::Builtin;
 
 /// How `transform` treats a three-component value.
 #[derive(Copy, Clone, PartialEq, Eq)]

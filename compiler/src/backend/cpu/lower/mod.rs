@@ -19,9 +19,9 @@ use smol_str::SmolStr;
 use crate::backend::binding::Binding;
 use crate::backend::cpu::code::{Code, Node, Reg};
 use crate::diag::Diagnostic;
+use crate::ir::global::Global;
 use crate::ir::types::{Base, Frequency, Type};
 use crate::ir::{Axis, ExprId, ExprKind, Input, LocalId, LocalKind, Place, Shader, Stmt};
-use crate::sema::globals::Global;
 pub(crate) use emit::{Emitter, Val};
 
 /// What a slot of registers holds, for the caller.

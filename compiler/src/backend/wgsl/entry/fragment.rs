@@ -9,9 +9,9 @@ use crate::backend::wgsl::func::FnBuilder;
 use crate::backend::wgsl::interface::UniformSource;
 use crate::backend::wgsl::module::{ModuleBuilder, sanitize};
 use crate::backend::wgsl::uses::Uses;
+use crate::ir::global::Global;
 use crate::ir::types::{Base, Frequency, Type};
 use crate::ir::{Axis, Input, Shader};
-use crate::sema::globals::Global;
 use crate::split::{StageKind, Stages};
 
 use super::{

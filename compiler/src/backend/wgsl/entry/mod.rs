@@ -75,14 +75,14 @@ pub(crate) struct Crossing {
     pub what: Carried,
     /// Predefined variables the fragment stage also fills from it: those [`SAME_ON_ENTRY`] makes
     /// equal to a [`Carried::Global`].
-    pub also: Vec<&'static crate::sema::globals::Global>,
+    pub also: Vec<&'static crate::ir::global::Global>,
 }
 
 /// What a varying carries.
 #[derive(Clone, Copy)]
 pub(crate) enum Carried {
     /// A predefined variable's value on entry to the vertex stage.
-    Global(&'static crate::sema::globals::Global),
+    Global(&'static crate::ir::global::Global),
     /// A vertex-rate parameter's value on entry.
     Param(crate::ir::LocalId),
     /// A transfer computed by the vertex stage.
@@ -144,7 +144,7 @@ pub(crate) fn entry_points(
     let refilled = |name: &str| {
         !surface.stanford && matches!(name, "Cs" | "Os" | "Ng") && fragment_uses.has_global(name)
     };
-    let crossing_globals: Vec<&'static crate::sema::globals::Global> = carried_globals
+    let crossing_globals: Vec<&'static crate::ir::global::Global> = carried_globals
         .iter()
         .copied()
         .filter(|g| g.frequency == Frequency::Vertex && !g.perlight && !refilled(g.name))

@@ -5,15 +5,15 @@
 //! The builder keeps the IR's conventions: operands of arithmetic have one type (a scalar meeting a
 //! vector is converted explicitly, as the semantic stage's `Convert` nodes do), built-in calls use
 //! the overload whose parameters match exactly, and each rate is the join of the operands' rates
-//! refined by the built-in's [`RateRule`].
+//! refined by the built-in's `RateRule` (`Shader::rate_of`).
 
-use super::builtin::BuiltinId;
-use super::types::{Base, Frequency, Rate, Type};
-use super::{BinaryOp, ExprId, ExprKind, Literal, LocalId, Shader, UnaryOp};
-use crate::ir::Expr;
-use crate::sema::builtins::{self, RateRule};
-use crate::source::Span;
 use smol_str::SmolStr;
+
+use crate::ir::builtin::BuiltinId;
+use crate::ir::types::{Base, Rate, Type};
+use crate::ir::{BinaryOp, Expr, ExprId, ExprKind, Literal, LocalId, Shader, UnaryOp};
+use crate::sema::builtins;
+use crate::source::Span;
 
 /// Appends expressions to a shader, each with the span currently set.
 pub struct Builder<'s> {
@@ -49,7 +49,7 @@ impl<'s> Builder<'s> {
 
     /// The rate an expression of this kind has, by the rules of `sema::rates`.
     pub fn rate_of(&self, kind: &ExprKind) -> Rate {
-        rate_of(self.shader, kind)
+        self.shader.rate_of(kind)
     }
 
     /// A float literal.
@@ -208,37 +208,5 @@ fn matrix_product(a: Type, b: Type) -> Option<Type> {
         (Base::Matrix3, x) if x.is_triple() => Some(b),
         (Base::Matrix4, Base::Matrix4) | (Base::Matrix3, Base::Matrix3) => Some(a),
         _ => None,
-    }
-}
-
-/// The rate an expression of this kind has in `shader`, from its operands' rates, by the rules
-/// of `sema::rates` (for builders of new expressions, and for `verify` to check the rates pass).
-pub fn rate_of(shader: &Shader, kind: &ExprKind) -> Rate {
-    let rate = |id: ExprId| shader.expr(id).rate;
-    let join = |ids: &[ExprId]| ids.iter().fold(Rate::CONSTANT, |r, &id| r.join(rate(id)));
-    match kind {
-        ExprKind::Literal(_) => Rate::CONSTANT,
-        ExprKind::Seed(..) => Rate::FRAGMENT,
-        ExprKind::Local(l) => shader.local(*l).rate,
-        ExprKind::Global(g) => Rate { frequency: g.frequency, perlight: g.perlight },
-        ExprKind::Unary(_, a) | ExprKind::Convert(a) => rate(*a),
-        ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => join(&[*a, *b]),
-        ExprKind::Select(c, a, b) => join(&[*c, *a, *b]),
-        ExprKind::Construct(parts) => join(parts),
-        ExprKind::FromSpace { space, value } if space != "current" => rate(*value).join(Rate::UNIFORM),
-        ExprKind::FromSpace { value, .. } => rate(*value),
-        ExprKind::Builtin(b, args) => {
-            let rate = join(args);
-            match b.rate {
-                RateRule::Max => rate,
-                RateRule::Derivative if rate.frequency >= Frequency::Vertex => {
-                    Rate { frequency: Frequency::Fragment, ..rate }
-                }
-                RateRule::Derivative => rate,
-                RateRule::Fragment | RateRule::Lights => rate.join(Rate::FRAGMENT),
-                RateRule::Uniform => rate.join(Rate::UNIFORM),
-                RateRule::Integrate => Rate { perlight: false, ..rate },
-            }
-        }
     }
 }

@@ -9,19 +9,24 @@
 //! ("Invariants between stages") lists them. [`assert_valid`] and [`assert_valid_stages`] are what
 //! the passes call: in debug builds (tests, fuzzing) they panic naming the pass and the violations;
 //! in release builds they do nothing.
+//!
+//! The checks apply the semantic stage's rules (the conversions a cast allows, the table of
+//! predefined variables, the built-ins' options) and read the split's stages, so this module sits
+//! beside `ir`, `sema` and `split` rather than inside `ir`, which depends on none of them.
 
 use std::fmt;
 
 use smol_str::SmolStr;
 
-use super::builtin::BuiltinId;
-use super::types::{Base, Frequency, Rate, Type};
-use super::{
+use crate::ir::builtin::{Builtin, BuiltinId, Context};
+use crate::ir::global::{Access, Global, Scope};
+use crate::ir::types::{Base, Frequency, Rate, Type};
+use crate::ir::{
     BinaryOp, Block, ExprId, ExprKind, Input, Literal, LocalId, LocalKind, Place, Shader, Stmt, UnaryOp,
 };
-use crate::sema::builtins::{self, Builtin, Context};
+use crate::sema::builtins;
 use crate::sema::convert;
-use crate::sema::globals::{self, Access, Global, Scope};
+use crate::sema::globals;
 use crate::split::{StageKind, Stages};
 use crate::syntax::ast::ShaderKind;
 
@@ -558,7 +563,7 @@ impl Verifier<'_> {
             self.fail(format!("e{} {}: {why}", id.0, describe(&e.kind)));
         }
         if self.pass.rated() {
-            let expected = crate::ir::build::rate_of(self.shader, &e.kind);
+            let expected = self.shader.rate_of(&e.kind);
             let ok = if self.pass == Pass::Rates { e.rate == expected } else { expected.fits_in(e.rate) };
             if !ok {
                 let relation = if self.pass == Pass::Rates { "exactly" } else { "at least" };

@@ -91,6 +91,14 @@ impl LightBinding {
     }
 }
 
+impl LightBinding {
+    /// Whether `illuminance` with the category selector `category` (none: every light) visits
+    /// this light, on both backends: never an ambient light, else one the selector matches.
+    pub fn visited_by(&self, category: Option<&str>) -> bool {
+        !self.ambient && category.is_none_or(|c| category_matches(c, &self.categories))
+    }
+}
+
 /// RenderMan's category selection, which `illuminance("selector", ...)` applies to each bound
 /// light on both backends: a light matches `"a,b"` when it is in any of those categories, and
 /// `"-a"` when it is not in `a`.

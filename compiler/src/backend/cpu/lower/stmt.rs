@@ -2,7 +2,6 @@
 //! constructs, unrolled over the binding's lights.
 
 use super::{Lower, Val};
-use crate::backend::binding::category_matches;
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, Node, Reg, Unary};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::types::{Base, Type};
@@ -257,7 +256,7 @@ impl Lower<'_> {
         };
         for k in 0..self.binding.lights.len() {
             let light = &self.binding.lights[k];
-            if light.ambient || category.as_ref().is_some_and(|c| !category_matches(c, &light.categories)) {
+            if !light.visited_by(category.as_deref()) {
                 continue;
             }
             self.light = Some(k);

@@ -39,7 +39,7 @@ pub(crate) fn check_light_count(surface: &Shader, lights: &[&Shader]) -> Result<
 use super::func::FnBuilder;
 use super::module::{ModuleBuilder, sanitize};
 use crate::backend::MAX_LOOP_ITERATIONS;
-use crate::backend::binding::{LightBinding, category_matches};
+use crate::backend::binding::LightBinding;
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind, LocalId, Place, Shader, Stmt};
@@ -482,7 +482,7 @@ impl<'a> Translator<'a> {
         };
         for k in 0..self.lights.len() {
             let light = &self.lights[k];
-            if light.ambient || category.as_ref().is_some_and(|c| !category_matches(c, &light.categories)) {
+            if !light.visited_by(category.as_deref()) {
                 continue;
             }
             self.light = Some(k);

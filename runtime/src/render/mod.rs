@@ -35,9 +35,12 @@ pub use progress::{Progress, Silent, Unit};
 pub enum RenderError {
     /// A missing file, an unknown shader or parameter.
     Input(String),
-    /// A shader's diagnostics: its errors when checked, or why a backend could not compile it
-    /// (a limit, a feature the GPU lacks, an internal error), with their codes and places.
+    /// A shader's errors when checked, with their codes and places; shown whole, as a terminal
+    /// shows diagnostics.
     Shader(ShaderDiagnostics),
+    /// Why a backend could not compile a shader that checked (a limit, a feature the GPU lacks,
+    /// an internal error), with its code and place; shown as one line, `CODE: message`.
+    Refused(ShaderDiagnostics),
     /// The program could not run (the interpreter's errors, a value the host could not compute).
     Compile(String),
     /// The GPU failed.
@@ -49,6 +52,11 @@ impl std::fmt::Display for RenderError {
         match self {
             RenderError::Input(m) | RenderError::Compile(m) => f.write_str(m.trim_end()),
             RenderError::Shader(d) => write!(f, "{d}"),
+            RenderError::Refused(d) => {
+                let lines: Vec<String> =
+                    d.diagnostics.iter().map(|d| format!("{}: {}", d.code, d.message)).collect();
+                f.write_str(&lines.join("; "))
+            }
             RenderError::Gpu(m) => write!(f, "GPU: {}", m.trim_end()),
         }
     }

@@ -45,9 +45,9 @@ impl LoadedShader {
         BoundLight { shader: &self.shader, strings: self.strings.clone(), categories: Vec::new() }
     }
 
-    /// A backend's refusal of this shader, as the render error that shows it at its place.
+    /// A backend's refusal of this shader, as the render error that keeps its code and place.
     pub fn error(&self, diagnostic: Diagnostic) -> RenderError {
-        RenderError::Shader(ShaderDiagnostics {
+        RenderError::Refused(ShaderDiagnostics {
             sources: Arc::clone(&self.sources),
             diagnostics: vec![diagnostic],
         })

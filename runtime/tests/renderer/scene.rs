@@ -2,6 +2,7 @@
 //! line, column and field of its message.
 
 use glam::{Mat4, Vec3};
+use patina_runtime::render::RenderError;
 use patina_runtime::scene::{
     Assignment, KnobKind, MeshSource, ParamValue, Reference, Scene, SceneErrorKind, Setting, TransformStep,
 };
@@ -600,25 +601,31 @@ fn a_shaders_diagnostics_keep_their_codes_and_places_through_the_renderer() {
         );
         let scene = Scene::parse(&text, &file, &dir).unwrap_or_else(|e| panic!("{e}"));
         match patina_runtime::render::prepare(&scene) {
-            Err(patina_runtime::render::RenderError::Shader(d)) => d,
+            Err(RenderError::Shader(d)) => (d, true),
+            Err(RenderError::Refused(d)) => (d, false),
             Err(other) => panic!("not a shader's diagnostics: {other:?}"),
             Ok(_) => panic!("prepared"),
         }
     };
-    // The check's error.
-    let d = prepare("surface s() {\n    Ci = undefined_thing;\n}\n", "");
+    // The check's error, shown whole.
+    let (d, checked) = prepare("surface s() {\n    Ci = undefined_thing;\n}\n", "");
+    assert!(checked);
     assert_eq!(d.diagnostics.len(), 1);
     assert_eq!(d.diagnostics[0].code.as_str(), "E0501");
     assert_eq!(d.sources.text(d.diagnostics[0].primary_span()), "undefined_thing");
     let shown = d.to_string();
     assert!(shown.contains("error[E0501]") && shown.contains("s.sl:2:10"), "{shown}");
-    // A backend's refusal of a shader that checks: a spline basis named by the scene.
-    let d = prepare(
+    // A backend's refusal of a shader that checks (a spline basis named by the scene): its code
+    // and place kept, shown in one line.
+    let (d, checked) = prepare(
         "surface s(string basis = \"bezier\") {\n    Ci = spline(basis, s, 0, 1, 2, 3);\n}\n",
         "params = { basis = \"cardinal\" }\n",
     );
+    assert!(!checked);
     assert_eq!(d.diagnostics.len(), 1);
     assert_eq!(d.diagnostics[0].code.as_str(), "E0701", "{d}");
     assert!(d.sources.text(d.diagnostics[0].primary_span()).starts_with("spline("), "{d}");
     assert!(d.to_string().contains("s.sl:2:"), "{d}");
+    let line = RenderError::Refused(d.clone()).to_string();
+    assert!(line.starts_with("E0701: ") && !line.contains('\n'), "{line}");
 }

@@ -40,7 +40,7 @@ pub fn render(
     let mut total = 0;
     for v in &shaded_vertices {
         let stats = draw(&mut dry, &v.clip, v.indices, &v.varyings(), &DRAW, |_, _| Ok::<_, RenderError>(()))
-            .map_err(|e| RenderError::Compile(e.to_string()))?;
+            .map_err(|e| RenderError::Run(e.to_string()))?;
         total += stats.fragments as u64;
     }
     progress.start(total, Unit::Fragments);
@@ -128,7 +128,7 @@ fn vertex_stage<'a>(object: &'a Object) -> Result<Vertices<'a>, RenderError> {
     let inputs: Vec<(&str, &[f64])> = columns.iter().map(|(n, c)| (n.as_str(), c.as_slice())).collect();
     let refs: Vec<&str> = transfers.iter().map(String::as_str).collect();
     let outputs =
-        vertex.eval_points(count, &inputs, &refs).map_err(|e| RenderError::Compile(e.to_string()))?;
+        vertex.eval_points(count, &inputs, &refs).map_err(|e| RenderError::Run(e.to_string()))?;
 
     // The varyings, in the interface's order and layout.
     let mut carried = Vec::new();
@@ -223,7 +223,7 @@ fn fragment_stage(
     })
     .map_err(|e| match e {
         crate::raster::DrawError::Shade(e) => e,
-        other => RenderError::Compile(other.to_string()),
+        other => RenderError::Run(other.to_string()),
     })?;
     shade_window(fb, &mut window)
 }
@@ -430,7 +430,7 @@ fn shade_batch(
         }
         let inputs = varying_inputs(&d.cpu, &columns);
         let outputs: Vec<&str> = ["P", "N"].into_iter().filter(|name| d.cpu.slot(name).is_some()).collect();
-        let moved = e.eval_points(n, &inputs, &outputs).map_err(|e| RenderError::Compile(e.to_string()))?;
+        let moved = e.eval_points(n, &inputs, &outputs).map_err(|e| RenderError::Run(e.to_string()))?;
         for (name, value) in outputs.into_iter().zip(moved) {
             match columns.iter_mut().find(|(n, _)| n == name) {
                 Some((_, c)) => *c = value,
@@ -463,7 +463,7 @@ fn shade_batch(
             .map(|(name, ..)| name.as_str()),
     );
     let mut outs =
-        fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Compile(e.to_string()))?;
+        fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Run(e.to_string()))?;
     let left: Vec<(String, Vec<f64>)> =
         wanted[shown..].iter().map(|name| surface_input(name)).zip(outs.split_off(shown)).collect();
     // The atmosphere, between the surface and the eye: on the surface's Ci and Oi (opaque when
@@ -500,7 +500,7 @@ fn shade_batch(
             messages.iter().filter(|(name, _)| varying(name)).map(|(name, c)| (name.as_str(), c.as_slice())),
         );
         let names: Vec<&str> = ["Ci", "Oi"].into_iter().filter(|name| a.cpu.slot(name).is_some()).collect();
-        let results = e.eval_points(n, &inputs, &names).map_err(|e| RenderError::Compile(e.to_string()))?;
+        let results = e.eval_points(n, &inputs, &names).map_err(|e| RenderError::Run(e.to_string()))?;
         let result = |name: &str| names.iter().position(|x| *x == name).map(|k| results[k].clone());
         outs = vec![result("Ci").unwrap_or(ci), result("Oi").unwrap_or(oi)];
     }
@@ -662,7 +662,7 @@ fn renderman_light(
         .collect();
     let mut outs = light
         .eval_points(n, &varying_inputs(&lp.cpu, &offered), &wanted)
-        .map_err(|e| RenderError::Compile(e.to_string()))?;
+        .map_err(|e| RenderError::Run(e.to_string()))?;
     if !has_l {
         outs.insert(0, vec![0.0; n * 3]);
     }
@@ -687,7 +687,7 @@ fn stanford_light(
 ) -> Result<Arrival, RenderError> {
     let n = point.n;
     let position = lp.position.ok_or_else(|| {
-        RenderError::Compile(format!("internal error: Stanford-style light {k} has no position"))
+        RenderError::Run(format!("internal error: Stanford-style light {k} has no position"))
     })?;
     let (mut toward, mut l, mut sdist) = (Vec::with_capacity(n * 3), Vec::with_capacity(n * 3), Vec::new());
     for i in 0..n {
@@ -721,7 +721,7 @@ fn stanford_light(
     let wanted: Vec<&str> = std::iter::once("result").chain(read_back.iter().copied()).collect();
     let mut outs = light
         .eval_points(n, &varying_inputs(&lp.cpu, &offered), &wanted)
-        .map_err(|e| RenderError::Compile(e.to_string()))?;
+        .map_err(|e| RenderError::Run(e.to_string()))?;
     let read_back = outs.split_off(1);
     let cl = outs.pop().unwrap_or_default();
     Ok(Arrival { toward, cl, read_back })

@@ -163,7 +163,7 @@ pub fn uniform_value(
         list.iter().find(|(n, _)| n == name).map(|(_, v)| v.clone())
     };
     let missing =
-        |what: String| RenderError::Compile(format!("internal error: no value for the uniform {what}"));
+        |what: String| RenderError::Run(format!("internal error: no value for the uniform {what}"));
     Ok(match source {
         UniformSource::Param { name } | UniformSource::Host { name } => {
             find(values.surface, name).ok_or_else(|| missing(format!("`{name}`")))?

@@ -22,7 +22,7 @@ pub fn render(gpu: &Gpu, prepared: &Prepared, width: u32, height: u32) -> Result
                     .flat_map(|i| object.vertex_param(name, i, a.components as usize))
                     .map(|x| x as f32)
                     .collect(),
-                _ => return Err(RenderError::Compile(format!("unknown attribute `{}`", a.name))),
+                _ => return Err(RenderError::Run(format!("unknown attribute `{}`", a.name))),
             };
             attributes.push(Attribute { location: a.location, components: a.components, data });
         }

@@ -129,7 +129,7 @@ pub fn cpu(imager: &ImagerProgram, image: &Image) -> Result<Image, RenderError> 
     let inputs: Vec<(&str, &[f64])> = columns.iter().map(|(n, c)| (n.as_str(), c.as_slice())).collect();
     let names = outputs(imager);
     let count = image.pixels.len();
-    let results = e.eval_points(count, &inputs, &names).map_err(|e| RenderError::Compile(e.to_string()))?;
+    let results = e.eval_points(count, &inputs, &names).map_err(|e| RenderError::Run(e.to_string()))?;
     Ok(finish(imager, image, &names, &results))
 }
 

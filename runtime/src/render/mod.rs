@@ -41,8 +41,9 @@ pub enum RenderError {
     /// Why a backend could not compile a shader that checked (a limit, a feature the GPU lacks,
     /// an internal error), with its code and place; shown as one line, `CODE: message`.
     Refused(ShaderDiagnostics),
-    /// The program could not run (the interpreter's errors, a value the host could not compute).
-    Compile(String),
+    /// The program could not run (the interpreter's errors, a value the host could not compute,
+    /// an input the stages disagree on).
+    Run(String),
     /// The GPU failed.
     Gpu(String),
 }
@@ -50,7 +51,7 @@ pub enum RenderError {
 impl std::fmt::Display for RenderError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            RenderError::Input(m) | RenderError::Compile(m) => f.write_str(m.trim_end()),
+            RenderError::Input(m) | RenderError::Run(m) => f.write_str(m.trim_end()),
             RenderError::Shader(d) => write!(f, "{d}"),
             RenderError::Refused(d) => {
                 let lines: Vec<String> =

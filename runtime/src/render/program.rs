@@ -397,7 +397,7 @@ pub fn evaluate_params(
         .collect();
     names.extend(extra.iter().cloned());
     let refs: Vec<&str> = names.iter().map(String::as_str).collect();
-    let values = eval.eval_points(1, &[], &refs).map_err(|e| RenderError::Compile(e.to_string()))?;
+    let values = eval.eval_points(1, &[], &refs).map_err(|e| RenderError::Run(e.to_string()))?;
     Ok(names.into_iter().zip(values).collect())
 }
 

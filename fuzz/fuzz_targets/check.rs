@@ -16,10 +16,10 @@ use patina_compiler::backend::cpu::CpuProgram;
 use patina_compiler::backend::defaults::constant_defaults;
 use patina_compiler::backend::wgsl;
 use patina_compiler::diag::{Code, Diagnostic};
-use patina_compiler::verify::{Pass, VerifyError, verify, verify_stages};
 use patina_compiler::opt::Prepared;
 use patina_compiler::syntax::ast::ShaderKind;
 use patina_compiler::syntax::preprocess::MemoryLoader;
+use patina_compiler::verify::{Pass, VerifyError, verify, verify_stages};
 
 /// The help line of the WGSL translator's known limits (`Translator::error`).
 const NOT_YET: &str = "the WGSL backend cannot translate this yet";

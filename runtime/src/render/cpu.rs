@@ -127,8 +127,7 @@ fn vertex_stage<'a>(object: &'a Object) -> Result<Vertices<'a>, RenderError> {
         .collect();
     let inputs: Vec<(&str, &[f64])> = columns.iter().map(|(n, c)| (n.as_str(), c.as_slice())).collect();
     let refs: Vec<&str> = transfers.iter().map(String::as_str).collect();
-    let outputs =
-        vertex.eval_points(count, &inputs, &refs).map_err(|e| RenderError::Run(e.to_string()))?;
+    let outputs = vertex.eval_points(count, &inputs, &refs).map_err(|e| RenderError::Run(e.to_string()))?;
 
     // The varyings, in the interface's order and layout.
     let mut carried = Vec::new();
@@ -462,8 +461,7 @@ fn shade_batch(
             .filter(|(name, _, has)| *has && program.slot(name).is_some())
             .map(|(name, ..)| name.as_str()),
     );
-    let mut outs =
-        fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Run(e.to_string()))?;
+    let mut outs = fragment.eval_points(n, &inputs, &wanted).map_err(|e| RenderError::Run(e.to_string()))?;
     let left: Vec<(String, Vec<f64>)> =
         wanted[shown..].iter().map(|name| surface_input(name)).zip(outs.split_off(shown)).collect();
     // The atmosphere, between the surface and the eye: on the surface's Ci and Oi (opaque when

@@ -162,8 +162,7 @@ pub fn uniform_value(
     let find = |list: &[(String, Vec<f64>)], name: &str| {
         list.iter().find(|(n, _)| n == name).map(|(_, v)| v.clone())
     };
-    let missing =
-        |what: String| RenderError::Run(format!("internal error: no value for the uniform {what}"));
+    let missing = |what: String| RenderError::Run(format!("internal error: no value for the uniform {what}"));
     Ok(match source {
         UniformSource::Param { name } | UniformSource::Host { name } => {
             find(values.surface, name).ok_or_else(|| missing(format!("`{name}`")))?

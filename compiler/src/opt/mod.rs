@@ -45,11 +45,6 @@ impl Prepared {
     pub fn shader(&self) -> &Shader {
         &self.0
     }
-
-    /// The prepared shader, to own.
-    pub fn into_shader(self) -> Shader {
-        self.0
-    }
 }
 
 impl std::ops::Deref for Prepared {

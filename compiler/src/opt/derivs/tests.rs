@@ -597,3 +597,17 @@ fn per_light_variables_get_per_light_shadows() {
     let shadow = shader.locals.iter().find(|l| l.name == "dx(lit)").expect("lit has shadows");
     assert!(shadow.rate.perlight && shadow.rate.frequency == crate::ir::types::Frequency::Fragment);
 }
+
+/// `stdlib::LIBRARY_BUILTINS` (what the semantic stage inlines from `builtins.sl`) is not an
+/// exhaustive match; the derivative rules are: the two must name the same built-ins.
+#[test]
+fn the_library_rule_names_exactly_the_library_builtins() {
+    use super::calls::{Rule, rule};
+    use crate::ir::builtin::BuiltinId;
+    let table = builtins::builtins();
+    for id in BuiltinId::ALL {
+        let overload = &table.overloads(id.name())[0];
+        let library = crate::stdlib::LIBRARY_BUILTINS.contains(id);
+        assert_eq!(rule(overload) == Rule::Library, library, "{id}");
+    }
+}

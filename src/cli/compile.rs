@@ -78,7 +78,7 @@ fn imager(args: &CompileArgs, name: &str) -> Result<ExitCode, String> {
     }
     let bound =
         patina_compiler::bind::specialize(found, &numbers, &strings, patina_compiler::bind::Consumed::All);
-    let shader = patina_compiler::opt::Prepared::new(bound.shader);
+    let shader = patina_compiler::opt::Prepared::with_strings(bound.shader, &strings);
     let binding = Binding { lights: Vec::new(), strings: strings.clone() };
     let cpu = CpuProgram::compile(&shader, &binding).map_err(|d| d.message)?;
     // What the renderer hands an imager, and the parameters the program reads.

@@ -39,7 +39,8 @@ pub fn run(args: EvalArgs) -> Result<ExitCode, String> {
         let (k, v) = s.split_once('=').ok_or_else(|| format!("`--string {s}`: expected NAME=VALUE"))?;
         binding.strings.push((k.trim().to_string(), v.to_string()));
     }
-    let program = match CpuProgram::compile(&patina_compiler::opt::Prepared::new(shader.clone()), &binding) {
+    let prepared = patina_compiler::opt::Prepared::with_strings(shader.clone(), &binding.strings);
+    let program = match CpuProgram::compile(&prepared, &binding) {
         Ok(p) => p,
         Err(d) => {
             eprint!("{}", diag::render_text(&checked.sources, &[d]));

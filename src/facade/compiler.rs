@@ -374,7 +374,7 @@ impl Compiler {
             numbers.iter().map(|(n, v)| Fixed { name: n.clone(), value: v.clone() }).collect();
         // A user's program may read any output parameter: keep them all.
         let bound = patina_compiler::bind::specialize(found, &fixed, &strings, Consumed::All);
-        let shader = Prepared::new(bound.shader);
+        let shader = Prepared::with_strings(bound.shader, &strings);
         let loaded = LoadedShader { shader, strings, params: numbers, decisions: bound.decisions, sources };
         Ok(Loaded { shader: loaded, warnings })
     }

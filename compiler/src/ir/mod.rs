@@ -8,6 +8,7 @@
 pub mod builtin;
 pub mod global;
 pub mod stores;
+pub mod strings;
 pub mod types;
 
 use smol_str::SmolStr;

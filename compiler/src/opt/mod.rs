@@ -5,32 +5,43 @@
 //! forward-mode automatic differentiation, seeded from the screen-space derivatives of the inputs.
 //! `textures` turns texture lookups into one filter written as arithmetic on texel fetches, so
 //! that every backend filters the same way; `shadow` does the same for shadow-map lookups
-//! (percentage-closer filtering over depth texels, the map carrying its own matrix).
+//! (percentage-closer filtering over depth texels, the map carrying its own matrix); `splines`
+//! turns `spline` calls into arithmetic on their knots.
 
 pub mod build;
 pub mod derivs;
 pub mod shadow;
+pub mod splines;
 pub mod textures;
 
 use crate::ir::Shader;
 
 /// A shader through the passes every backend shares (the footprints of environment lookups,
-/// derivatives, texture and shadow-map lookups): the one form the backends take. It is made only
+/// derivatives, texture and shadow-map lookups, splines): the one form the backends take. It is made only
 /// by [`Prepared::new`], or by a split, whose stages are slices of a prepared shader; so a backend
 /// can be handed neither a shader those passes have not seen nor one they have seen twice.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Prepared(Shader);
 
 impl Prepared {
-    /// Runs a checked (and possibly bound) shader through the shared passes.
+    /// Runs a checked (and possibly bound) shader through the shared passes, its `string`
+    /// parameters at their defaults.
     ///
     /// Each pass checks its own result in debug builds (`verify`); the whole is checked once
-    /// more for what the backends rely on, all three passes' guarantees at once.
-    pub fn new(mut shader: Shader) -> Prepared {
+    /// more for what the backends rely on, all the passes' guarantees at once.
+    pub fn new(shader: Shader) -> Prepared {
+        Prepared::with_strings(shader, &[])
+    }
+
+    /// [`Prepared::new`] for a shader whose `string` parameters have the values `strings` (by
+    /// name; the others their defaults): the values the backends are given in `Binding::strings`.
+    /// A string decides which code a call becomes (a spline's basis).
+    pub fn with_strings(mut shader: Shader, strings: &[(String, String)]) -> Prepared {
         textures::footprints(&mut shader);
         derivs::differentiate(&mut shader);
         textures::expand(&mut shader);
         shadow::expand(&mut shader);
+        splines::expand(&mut shader, strings);
         crate::verify::assert_valid(&shader, crate::verify::Pass::Prepare);
         Prepared(shader)
     }

@@ -53,7 +53,9 @@ pub enum Pass {
     Textures,
     /// `opt::shadow::expand`: no shadow-map lookup remains.
     Shadows,
-    /// The whole of `opt::Prepared::new`: what the three passes above each guarantee.
+    /// `opt::splines::expand`.
+    Splines,
+    /// The whole of `opt::Prepared::new`: what the passes above each guarantee.
     Prepare,
     /// `split`: one stage, which reads only values of its own stage or lower.
     Split(StageKind),
@@ -100,6 +102,7 @@ impl fmt::Display for Pass {
             Pass::Derivatives => f.write_str("opt::derivs::differentiate"),
             Pass::Textures => f.write_str("opt::textures::expand"),
             Pass::Shadows => f.write_str("opt::shadow::expand"),
+            Pass::Splines => f.write_str("opt::splines::expand"),
             Pass::Prepare => f.write_str("opt::Prepared::new"),
             Pass::Split(stage) => write!(f, "split ({} stage)", stage.name()),
         }

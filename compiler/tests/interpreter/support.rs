@@ -12,7 +12,10 @@ use patina_compiler::syntax::preprocess::MemoryLoader;
 pub fn try_compile(source: &str, binding: &Binding) -> Result<CpuProgram, Diagnostic> {
     let checked = patina_compiler::check_source("test.sl", source, &MemoryLoader::default());
     assert!(!checked.has_errors(), "{}in\n{source}", checked.diagnostics_text());
-    CpuProgram::compile(&Prepared::new(checked.program.shaders[0].clone()), binding)
+    CpuProgram::compile(
+        &Prepared::with_strings(checked.program.shaders[0].clone(), &binding.strings),
+        binding,
+    )
 }
 
 /// As [`try_compile`], failing the test when the interpreter refuses the shader.

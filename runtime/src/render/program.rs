@@ -213,7 +213,7 @@ pub fn load_reading(
         (shader_ir.clone(), Vec::new())
     };
     Ok(LoadedShader {
-        shader: Prepared::new(shader_ir),
+        shader: Prepared::with_strings(shader_ir, &strings),
         strings,
         params,
         decisions,

@@ -5,9 +5,9 @@
 //! products, `smoothstep`, `inversesqrt`) the sequence is written out, so that both backends give
 //! the same bits. Transcendentals (`sin`, `exp`, `pow`, ...) are WGSL's, within its accuracy
 //! rules. The composite families live beside this file: `geometry` (spaces, `transform`),
-//! `matrices`, `curves` (`spline`) and `strings` (`concat`, `match`); colour spaces, `fresnel`,
-//! `ptlined`, `rotate`, `translate`, `scale` and `determinant` are the library's
-//! (`compiler/stdlib/builtins.sl`).
+//! `matrices` and `strings` (`concat`, `match`); colour spaces, `fresnel`, `ptlined`, `rotate`,
+//! `translate`, `scale` and `determinant` are the library's (`compiler/stdlib/builtins.sl`), and
+//! `spline` is arithmetic on its knots by then (`opt::splines`).
 
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
 
@@ -273,7 +273,8 @@ impl Translator<'_> {
                 crate::stdlib::check_colour_space(&name, span)?;
                 void(self)
             }
-            B::Spline => self.spline(args, &vals, ret, span)?,
+            // Left by `opt::splines` only when it cannot be run.
+            B::Spline => return Err(crate::opt::splines::refusal(self.shader, id, self.strings)),
             B::Match => self.pattern_match(args, span)?,
             B::Concat => {
                 return Err(self.error(
@@ -490,7 +491,7 @@ impl Translator<'_> {
     /// the uniform block, where the light's parameters live.
     fn lightsource(&mut self, args: &[ExprId], span: crate::source::Span) -> Result<Value, Diagnostic> {
         let ty = self.shader.expr(args[1]).ty;
-        let found = match (self.string_value(args[0]), self.light) {
+        let found = match (self.fold_string(args[0]), self.light) {
             (Some(name), Some(k)) if self.lights[k].params.iter().any(|(n, t)| *n == name && *t == ty) => {
                 Some((name, k))
             }
@@ -524,7 +525,7 @@ impl Translator<'_> {
     /// the lights; after the body for an atmosphere), else its uniform.
     fn surface_message(&mut self, args: &[ExprId], span: crate::source::Span) -> Result<Value, Diagnostic> {
         let ty = self.shader.expr(args[1]).ty;
-        let Some(name) = self.string_value(args[0]) else { return Ok(self.float(0.0)) };
+        let Some(name) = self.fold_string(args[0]) else { return Ok(self.float(0.0)) };
         let Some(surface) = self.surface else {
             return Err(self.error(span, "`surface` needs the surface's shader in the same module"));
         };

@@ -17,7 +17,6 @@
 
 mod body;
 mod builtins;
-mod curves;
 mod entry;
 mod func;
 mod geometry;

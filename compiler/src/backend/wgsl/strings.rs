@@ -2,29 +2,19 @@
 //! never reach the GPU. `match` uses the matcher the interpreter uses too (`backend::pattern`),
 //! so the two backends cannot disagree on a pattern.
 
-use crate::ir::builtin::BuiltinId;
 use smol_str::SmolStr;
 
 use super::body::{Translator, Value};
 use crate::backend::pattern;
 use crate::diag::{Code, Diagnostic};
-use crate::ir::{ExprId, ExprKind};
+use crate::ir::ExprId;
 use crate::source::Span;
 
 impl Translator<'_> {
-    /// The string a string-typed expression denotes: a literal, a string parameter (bound or its
-    /// default), or a `concat` of such.
+    /// The string a string-typed expression denotes (`Shader::string_value`, with the bound
+    /// string parameters).
     pub(super) fn fold_string(&self, id: ExprId) -> Option<SmolStr> {
-        if let ExprKind::Builtin(b, args) = &self.shader.expr(id).kind
-            && b.id == BuiltinId::Concat
-        {
-            let mut s = String::new();
-            for a in args {
-                s.push_str(&self.fold_string(*a)?);
-            }
-            return Some(s.into());
-        }
-        self.string_value(id)
+        self.shader.string_value(id, self.strings)
     }
 
     /// `match(pattern, subject)`: 1 or 0, decided now.

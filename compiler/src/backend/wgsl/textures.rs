@@ -86,7 +86,7 @@ impl Translator<'_> {
                     .find(|(n, _)| *n == local.name)
                     .map_or_else(|| local.name.to_string(), |(_, v)| v.clone())
             }
-            _ => self.string_value(id).map(|s| s.to_string()).unwrap_or_default(),
+            _ => self.fold_string(id).map(|s| s.to_string()).unwrap_or_default(),
         }
     }
 

@@ -10,7 +10,7 @@
 //! postconcatenation is described). `invert` stays here, with the Laplace expansion (`minor`) that
 //! the library's `determinant` repeats operation for operation.
 //!
-//! This module also dispatches the built-ins of `curves` (`spline`) and `pattern` (`match`), checks
+//! This module also refuses the `spline` calls `opt::splines` left, dispatches `pattern`'s `match`, checks
 //! the colour space names `ctransform` reads from the binding (its conversions are the library's),
 //! and holds `depth`.
 
@@ -112,7 +112,8 @@ impl Lower<'_> {
                 crate::stdlib::check_colour_space(name, span)?;
                 Val::Void
             }
-            B::Spline => self.spline(vals, ret.base.components(), span)?,
+            // Left by `opt::splines` only when it cannot be run.
+            B::Spline => return Err(crate::opt::splines::refusal(self.shader, id, &self.binding.strings)),
             B::Match => {
                 let (Val::Str(pattern), Val::Str(subject)) = (&vals[0], &vals[1]) else { return Ok(None) };
                 match crate::backend::pattern::search(pattern, subject) {

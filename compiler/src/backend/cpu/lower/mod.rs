@@ -7,7 +7,6 @@
 
 mod builtins;
 pub use builtins::{lightsource_input, surface_flag_input, surface_input};
-mod curves;
 mod emit;
 mod expr;
 mod geometry;

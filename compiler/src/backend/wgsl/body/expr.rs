@@ -1,7 +1,6 @@
 //! Expressions to naga: variables, literals, indexing (clamped), conversions' callers, seeds.
 
 use naga::{Expression, Literal as NLit, ScalarKind, UnaryOperator};
-use smol_str::SmolStr;
 
 use super::{Translator, Value};
 use crate::diag::Diagnostic;
@@ -61,7 +60,7 @@ impl Translator<'_> {
             }
             ExprKind::Binary(op, a, b) if self.shader.expr(*a).ty.base == Base::String => {
                 // Strings are known at compile time: so is their comparison.
-                let (Some(x), Some(y)) = (self.string_value(*a), self.string_value(*b)) else {
+                let (Some(x), Some(y)) = (self.fold_string(*a), self.fold_string(*b)) else {
                     return Err(self.error(span, "a comparison of strings not known at compile time"));
                 };
                 let equal = x == y;
@@ -204,24 +203,6 @@ impl Translator<'_> {
         } else {
             let bits = self.fb.add(Expression::Literal(NLit::U32(f.to_bits())));
             self.fb.add(Expression::As { expr: bits, kind: ScalarKind::Float, convert: None })
-        }
-    }
-
-    /// The string a string-typed expression denotes (strings are known at compile time).
-    pub fn string_value(&self, id: ExprId) -> Option<SmolStr> {
-        match &self.shader.expr(id).kind {
-            ExprKind::Literal(Literal::String(s)) => Some(s.clone()),
-            ExprKind::Local(l) => {
-                let local = self.shader.local(*l);
-                if let Some((_, v)) = self.strings.iter().find(|(n, _)| *n == local.name) {
-                    return Some(SmolStr::new(v));
-                }
-                match local.kind {
-                    crate::ir::LocalKind::Param { default: Some(d), .. } => self.string_value(d),
-                    _ => None,
-                }
-            }
-            _ => None,
         }
     }
 }

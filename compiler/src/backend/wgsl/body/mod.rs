@@ -477,7 +477,7 @@ impl<'a> Translator<'a> {
     /// `illuminance`: the body once per bound non-ambient light of the category, inside its cone.
     pub(crate) fn illuminance(&mut self, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
         let (category, rest) = match args.first().map(|a| self.shader.expr(*a).ty.base) {
-            Some(Base::String) => (self.string_value(args[0]), &args[1..]),
+            Some(Base::String) => (self.fold_string(args[0]), &args[1..]),
             _ => (None, args),
         };
         for k in 0..self.lights.len() {

@@ -300,7 +300,8 @@ fn collect(block: &Block, roots: &mut Vec<ExprId>, stores: &mut Vec<(LocalId, Ex
             Stmt::If { cond, .. } => roots.push(*cond),
             Stmt::Loop { cond, .. } => roots.extend(cond.iter().copied()),
             Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => roots.extend(args.iter().copied()),
-            Stmt::Inline { .. } | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+            Stmt::Inline { .. } | Stmt::Lights { .. } | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {
+            }
         }
         stmt.for_each_block(|b| collect(b, roots, stores));
     }

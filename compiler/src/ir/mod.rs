@@ -189,6 +189,16 @@ pub enum ExprKind {
     /// `opt::derivs`, never by the semantic stage). Its type is the input's, with `point` read as
     /// `vector`.
     Seed(Input, Axis),
+    /// The sum of `value` evaluated for each of the bound lights `lights` in turn (zero for
+    /// none): `ambient()` and Stanford's `integrate` over the lights they sum, made by
+    /// `opt::lights`, never by the semantic stage. Inside it, the per-light variables (`L`, `Cl`,
+    /// `Ol`, per-light locals) are the visited light's.
+    LightSum {
+        /// The bound lights, by index in the binding.
+        lights: Vec<u32>,
+        /// The per-light value.
+        value: ExprId,
+    },
 }
 
 impl ExprKind {
@@ -196,7 +206,10 @@ impl ExprKind {
     pub fn for_each_operand(&self, mut f: impl FnMut(ExprId)) {
         match self {
             ExprKind::Literal(_) | ExprKind::Local(_) | ExprKind::Global(_) | ExprKind::Seed(..) => {}
-            ExprKind::Unary(_, a) | ExprKind::Convert(a) | ExprKind::FromSpace { value: a, .. } => f(*a),
+            ExprKind::Unary(_, a)
+            | ExprKind::Convert(a)
+            | ExprKind::FromSpace { value: a, .. }
+            | ExprKind::LightSum { value: a, .. } => f(*a),
             ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => {
                 f(*a);
                 f(*b);
@@ -314,6 +327,16 @@ pub enum Stmt {
         /// The body that sets `Cl`.
         body: Block,
     },
+    /// `body` run once for each of the bound lights `lights`, in order, with the per-light
+    /// variables (`L`, `Cl`, `Ol`, per-light locals) and per-light expressions the visited
+    /// light's: what `illuminance` and Stanford per-light statements become in `opt::lights`,
+    /// never made by the semantic stage.
+    Lights {
+        /// The bound lights, by index in the binding.
+        lights: Vec<u32>,
+        /// The per-light body.
+        body: Block,
+    },
 }
 
 impl Stmt {
@@ -329,7 +352,10 @@ impl Stmt {
                 f(body);
                 f(step);
             }
-            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => f(body),
+            Stmt::Inline { body, .. }
+            | Stmt::Illuminance { body, .. }
+            | Stmt::Emit { body, .. }
+            | Stmt::Lights { body, .. } => f(body),
             Stmt::Eval(_) | Stmt::Store { .. } | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
         }
     }
@@ -397,6 +423,7 @@ impl Shader {
             ExprKind::Construct(parts) => join(parts),
             ExprKind::FromSpace { space, value } if space != "current" => rate(*value).join(Rate::UNIFORM),
             ExprKind::FromSpace { value, .. } => rate(*value),
+            ExprKind::LightSum { value, .. } => Rate { perlight: false, ..rate(*value) },
             ExprKind::Builtin(b, args) => {
                 let rate = join(args);
                 match b.rate {
@@ -423,7 +450,9 @@ pub fn is_ambient(light: &Shader) -> bool {
             Stmt::Emit { .. } => true,
             Stmt::If { then, otherwise, .. } => emits(then) || emits(otherwise),
             Stmt::Loop { body, step, .. } => emits(body) || emits(step),
-            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } => emits(body),
+            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Lights { body, .. } => {
+                emits(body)
+            }
             _ => false,
         })
     }

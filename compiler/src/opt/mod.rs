@@ -6,10 +6,12 @@
 //! `textures` turns texture lookups into one filter written as arithmetic on texel fetches, so
 //! that every backend filters the same way; `shadow` does the same for shadow-map lookups
 //! (percentage-closer filtering over depth texels, the map carrying its own matrix); `splines`
-//! turns `spline` calls into arithmetic on their knots.
+//! turns `spline` calls into arithmetic on their knots. `lights`, unlike the others, runs for one
+//! binding, in each backend: the light constructs over the bound lights.
 
 pub mod build;
 pub mod derivs;
+pub mod lights;
 pub mod shadow;
 pub mod splines;
 pub mod textures;

@@ -159,7 +159,8 @@ impl Analysis<'_> {
             | Stmt::Break(_)
             | Stmt::Continue(_)
             | Stmt::Return
-            | Stmt::Inline { .. } => {}
+            | Stmt::Inline { .. }
+            | Stmt::Lights { .. } => {}
         }
         if let Some(last) = last {
             self.advance(last);
@@ -198,6 +199,10 @@ impl Analysis<'_> {
                 (Rate { frequency: g.frequency, perlight: g.perlight }, Origin { span, why: Why::Declared })
             }
             ExprKind::Unary(_, a) | ExprKind::Convert(a) => join_all(&[*a]),
+            ExprKind::LightSum { value, .. } => {
+                let (rate, origin) = join_all(&[*value]);
+                (Rate { perlight: false, ..rate }, origin)
+            }
             ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => join_all(&[*a, *b]),
             ExprKind::Select(c, a, b) => join_all(&[*c, *a, *b]),
             ExprKind::Construct(parts) => join_all(parts),
@@ -334,6 +339,8 @@ impl Analysis<'_> {
                     self.frames.pop();
                     self.inlined = saved;
                 }
+                // Made after this pass (`opt::lights`): a light loop.
+                Stmt::Lights { body, .. } => self.block(body, control, control_origin, true),
                 Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
             }
         }
@@ -397,9 +404,10 @@ impl Analysis<'_> {
                 Stmt::Break(n) | Stmt::Continue(n) => *n > loops,
                 Stmt::Return => true,
                 Stmt::If { then, otherwise, .. } => exits(then, loops) || exits(otherwise, loops),
-                Stmt::Loop { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
-                    exits(body, loops.saturating_add(1))
-                }
+                Stmt::Loop { body, .. }
+                | Stmt::Illuminance { body, .. }
+                | Stmt::Emit { body, .. }
+                | Stmt::Lights { body, .. } => exits(body, loops.saturating_add(1)),
                 Stmt::Inline { .. } | Stmt::Store { .. } | Stmt::Eval(_) => false,
             })
         }
@@ -432,7 +440,7 @@ impl Analysis<'_> {
                     }
                     consider(&mut best, self.exit_conditions(body, inner));
                 }
-                Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } | Stmt::Lights { body, .. } => {
                     consider(&mut best, self.exit_conditions(body, loops.saturating_add(1)));
                 }
                 _ => {}

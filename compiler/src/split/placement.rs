@@ -114,7 +114,9 @@ impl Placement {
                 self.block(shader, step, inner, light);
             }
             Stmt::Inline { body, .. } => self.block(shader, body, control, light),
-            Stmt::Illuminance { body, .. } => self.block(shader, body, StageKind::Fragment, true),
+            Stmt::Illuminance { body, .. } | Stmt::Lights { body, .. } => {
+                self.block(shader, body, StageKind::Fragment, true)
+            }
             Stmt::Emit { body, .. } => self.block(shader, body, StageKind::Fragment, light),
             Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
         }

@@ -151,9 +151,10 @@ fn written_globals(block: &Block, out: &mut FxHashSet<Var>) {
                 written_globals(body, out);
                 written_globals(step, out);
             }
-            Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
-                written_globals(body, out)
-            }
+            Stmt::Inline { body, .. }
+            | Stmt::Illuminance { body, .. }
+            | Stmt::Emit { body, .. }
+            | Stmt::Lights { body, .. } => written_globals(body, out),
             Stmt::Eval(_) | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
         }
     }
@@ -338,6 +339,12 @@ impl<'a> Slicer<'a> {
                     out.push(Stmt::Illuminance { args: args.clone(), body });
                 }
             }
+            Stmt::Lights { lights, body } => {
+                if self.stage == StageKind::Fragment && self.has_effects(body) {
+                    let body = self.block(body, true);
+                    out.push(Stmt::Lights { lights: lights.clone(), body });
+                }
+            }
             Stmt::Emit { solar, args, body } => {
                 if self.stage == StageKind::Fragment {
                     for &a in args {
@@ -358,7 +365,9 @@ impl<'a> Slicer<'a> {
             Stmt::If { then, otherwise, .. } => self.has_effects(then) || self.has_effects(otherwise),
             Stmt::Loop { body, step, .. } => self.has_effects(body) || self.has_effects(step),
             Stmt::Inline { body, .. } => self.has_effects(body),
-            Stmt::Illuminance { body, .. } => self.stage == StageKind::Fragment && self.has_effects(body),
+            Stmt::Illuminance { body, .. } | Stmt::Lights { body, .. } => {
+                self.stage == StageKind::Fragment && self.has_effects(body)
+            }
             Stmt::Emit { .. } => self.stage == StageKind::Fragment,
             Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => false,
         })

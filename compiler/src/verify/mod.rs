@@ -55,6 +55,9 @@ pub enum Pass {
     Shadows,
     /// `opt::splines::expand`.
     Splines,
+    /// `opt::lights::unroll`: no light construct, light sum built-in or per-light statement
+    /// outside a light loop remains.
+    Lights,
     /// The whole of `opt::Prepared::new`: what the passes above each guarantee.
     Prepare,
     /// `split`: one stage, which reads only values of its own stage or lower.
@@ -103,6 +106,7 @@ impl fmt::Display for Pass {
             Pass::Textures => f.write_str("opt::textures::expand"),
             Pass::Shadows => f.write_str("opt::shadow::expand"),
             Pass::Splines => f.write_str("opt::splines::expand"),
+            Pass::Lights => f.write_str("opt::lights::unroll"),
             Pass::Prepare => f.write_str("opt::Prepared::new"),
             Pass::Split(stage) => write!(f, "split ({} stage)", stage.name()),
         }
@@ -365,6 +369,9 @@ impl Verifier<'_> {
         }
         if let Pass::Split(stage) = self.pass {
             self.stage_reads(stage);
+        }
+        if self.pass == Pass::Lights {
+            self.lights_unrolled();
         }
     }
 
@@ -689,6 +696,12 @@ impl Verifier<'_> {
                 want(ty, self.ty(*a), "the result")?;
             }
             ExprKind::Builtin(b, args) => self.call_type(b, args, ty)?,
+            ExprKind::LightSum { value, .. } => {
+                want(self.ty(*value), ty, "the summed value")?;
+                if ty.is_array() || matches!(ty.base, Base::Void | Base::Bool | Base::String | Base::Texref) {
+                    return Err(format!("`{ty}` values cannot be summed"));
+                }
+            }
             ExprKind::Seed(input, _) => {
                 let of = match input {
                     Input::Global(g) => Type::of(g.ty),
@@ -921,6 +934,12 @@ impl Verifier<'_> {
                 }
                 self.block(body, within);
             }
+            Stmt::Lights { body, .. } => {
+                if s.kind == ShaderKind::Light {
+                    self.fail("a light loop in a light shader".into());
+                }
+                self.block(body, within);
+            }
         }
     }
 
@@ -984,7 +1003,7 @@ impl Verifier<'_> {
         fn roots(block: &Block, stack: &mut Vec<ExprId>) {
             for stmt in block {
                 statement_roots(stmt, stack);
-                if !matches!(stmt, Stmt::Illuminance { .. }) {
+                if !matches!(stmt, Stmt::Illuminance { .. } | Stmt::Lights { .. }) {
                     stmt.for_each_block(|b| roots(b, stack));
                 }
             }
@@ -999,7 +1018,10 @@ impl Verifier<'_> {
             if std::mem::replace(&mut outside[e.0 as usize], true) {
                 continue;
             }
-            s.expr(e).kind.for_each_operand(|o| stack.push(o));
+            // A light sum's value is read for each of its lights.
+            if !matches!(s.expr(e).kind, ExprKind::LightSum { .. }) {
+                s.expr(e).kind.for_each_operand(|o| stack.push(o));
+            }
         }
         for (i, e) in s.exprs.iter().enumerate() {
             if !outside[i] {
@@ -1034,6 +1056,44 @@ impl Verifier<'_> {
                 self.fail(format!("e{i} still calls `{}`", b.signature));
             }
         }
+    }
+
+    /// What `opt::lights::unroll` leaves: no light construct or light sum built-in, and no
+    /// statement computing a per-light value outside a light loop.
+    fn lights_unrolled(&mut self) {
+        let s = self.shader;
+        for (i, e) in s.exprs.iter().enumerate() {
+            if let ExprKind::Builtin(b, _) = &e.kind
+                && matches!(b.id, BuiltinId::Ambient | BuiltinId::Integrate)
+            {
+                self.fail(format!("e{i} still calls `{}`", b.signature));
+            }
+        }
+        fn walk(s: &Shader, block: &Block, out: &mut Vec<String>) {
+            for stmt in block {
+                match stmt {
+                    Stmt::Illuminance { .. } | Stmt::Emit { .. } => {
+                        out.push("a light construct is left".into())
+                    }
+                    Stmt::Lights { .. } => continue,
+                    _ => {}
+                }
+                let mut roots = Vec::new();
+                statement_roots(stmt, &mut roots);
+                let stored = match stmt {
+                    Stmt::Store { place, .. } => place_perlight(s, place),
+                    _ => false,
+                };
+                if stored || roots.iter().any(|r| s.expr(*r).rate.perlight) {
+                    out.push("a per-light statement outside a light loop".into());
+                }
+                stmt.for_each_block(|b| walk(s, b, out));
+            }
+        }
+        let mut found = Vec::new();
+        walk(s, &s.body, &mut found);
+        found.dedup();
+        self.out.extend(found);
     }
 
     /// A stage reads only values its own stage or a lower one computes, and stores only into
@@ -1101,6 +1161,17 @@ fn root_of(place: &Place) -> &Place {
     }
 }
 
+/// Whether `place` is a per-light variable (or an element of one).
+fn place_perlight(s: &Shader, mut place: &Place) -> bool {
+    loop {
+        match place {
+            Place::Local(l) => return s.local(*l).rate.perlight,
+            Place::Global(g) => return g.perlight,
+            Place::Index(inner, _) => place = inner,
+        }
+    }
+}
+
 /// The expressions a statement reads itself (not those of the statements nested in it): its
 /// value, condition or arguments, and the indices of the place it stores into.
 fn statement_roots(stmt: &Stmt, out: &mut Vec<ExprId>) {
@@ -1117,7 +1188,7 @@ fn statement_roots(stmt: &Stmt, out: &mut Vec<ExprId>) {
         Stmt::If { cond, .. } => out.push(*cond),
         Stmt::Loop { cond, .. } => out.extend(cond.iter().copied()),
         Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => out.extend(args.iter().copied()),
-        Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. } => {}
+        Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. } | Stmt::Lights { .. } => {}
     }
 }
 
@@ -1136,6 +1207,7 @@ fn describe(kind: &ExprKind) -> String {
         ExprKind::Index(a, i) => format!("(e{}[e{}])", a.0, i.0),
         ExprKind::Select(c, a, b) => format!("(e{} ? e{} : e{})", c.0, a.0, b.0),
         ExprKind::Builtin(b, args) => format!("(`{}`({}))", b.id, ids(args)),
+        ExprKind::LightSum { lights, value } => format!("(e{} summed over lights {lights:?})", value.0),
         ExprKind::Seed(Input::Global(g), axis) => format!("(seed of `{}` along {axis:?})", g.name),
         ExprKind::Seed(Input::Param(l), axis) => format!("(seed of l{} along {axis:?})", l.0),
     }

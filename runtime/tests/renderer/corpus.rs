@@ -13,7 +13,11 @@ const EXCLUDED: &[(&str, &str)] = &[];
 
 /// Files that check but do not yet render on both backends or agree, with the reason: the test
 /// asserts that each still fails, so that this list stays true as the gaps close.
-const NOT_YET: &[(&str, &str)] = &[];
+const NOT_YET: &[(&str, &str)] = &[(
+    "surface/expensive.sl",
+    "reads the map its baking pass writes (`objname.bakename.tex`, \".bake.tex\" by default), which no \
+     pass of the corpus scene makes: a missing map is an error here, where RenderMan answers black",
+)];
 
 /// Files whose test picture is black by design, with why.
 const DARK: &[(&str, &str)] = &[("surface/showuser.sl", "shows a user attribute the scene does not set")];

@@ -30,9 +30,6 @@ impl Translator<'_> {
         let e = self.shader.expr(id);
         let (ret, span) = (e.ty, e.span);
         let types: Vec<Type> = args.iter().map(|a| self.shader.expr(*a).ty).collect();
-        if b.id == B::Integrate {
-            return self.integrate(args[0], ret);
-        }
         if let Some(fetch) = super::textures::Fetch::of(b.id) {
             // The texture argument is a binding, not a value: only the coordinates are computed.
             let coords: Vec<Value> = args[1..].iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
@@ -244,7 +241,6 @@ impl Translator<'_> {
             }
             B::Reflect => self.reflect(v(0), v(1)),
             B::Refract => self.refract(v(0), v(1), v(2)),
-            B::Ambient => self.ambient()?,
             B::LightSource => self.lightsource(args, span)?,
             B::Surface => self.surface_message(args, span)?,
             B::Transform | B::VTransform | B::NTransform => self.transform(b.id, args, &vals, ret, span)?,
@@ -337,7 +333,12 @@ impl Translator<'_> {
                     self.error(span, format!("the built-in `{}` is not available on the GPU yet", b.id))
                 );
             }
-            B::Integrate => unreachable!("summed above, before its argument is lowered"),
+            B::Ambient | B::Integrate => {
+                return Err(super::internal(
+                    span,
+                    format!("internal error: `{}` reached the WGSL backend (opt::lights::unroll)", b.id),
+                ));
+            }
             B::Texel2d | B::Texel3d | B::Texsize2d | B::Texsize3d => unreachable!("fetched above"),
         })
     }
@@ -545,36 +546,6 @@ impl Translator<'_> {
         };
         self.write_output(args[1], value);
         Ok(self.float(1.0))
-    }
-
-    /// RenderMan's `ambient()`: the sum of the ambient lights' `Cl`. (The other light sums are
-    /// written in the language, `compiler/stdlib/builtins.sl`.)
-    fn ambient(&mut self) -> Result<Value, Diagnostic> {
-        let zero = self.float(0.0);
-        let mut sum = self.splat(zero, 3);
-        for k in 0..self.lights.len() {
-            if !self.lights[k].ambient {
-                continue;
-            }
-            let outer = self.light.replace(k);
-            let cl = self.global_value("Cl");
-            self.light = outer;
-            sum = self.binary(Op::Add, sum, cl?);
-        }
-        Ok(sum)
-    }
-
-    /// Stanford's `integrate(x)`: the sum of a per-light value over the bound lights.
-    fn integrate(&mut self, arg: ExprId, ret: Type) -> Result<Value, Diagnostic> {
-        let zero = self.float(0.0);
-        let mut sum = self.splat(zero, ret.base.components());
-        for k in 0..self.lights.len() {
-            let outer = self.light.replace(k);
-            let x = self.expr(arg);
-            self.light = outer;
-            sum = self.binary(Op::Add, sum, x?);
-        }
-        Ok(sum)
     }
 }
 

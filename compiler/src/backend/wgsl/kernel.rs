@@ -98,8 +98,9 @@ pub fn compile_kernel_lowered(
 ) -> Result<Kernel, Diagnostic> {
     let mut mb = ModuleBuilder::without_uniform_tables();
     mb.lowering = lowering;
-    let mut t = Translator::new(&mut mb, shader, "", lights, strings, "body");
-    t.block(&shader.body)?;
+    let lit = crate::opt::lights::unroll(shader, lights, strings);
+    let mut t = Translator::new(&mut mb, &lit, "", lights, strings, "body");
+    t.block(&lit.body)?;
     let body_fn = std::mem::replace(&mut t.fb, FnBuilder::new("")).finish();
     drop(t);
     let body = mb.module.functions.append(body_fn, Span::UNDEFINED);

@@ -137,27 +137,29 @@ pub fn compile_shaded(
     for (k, light) in lights.iter().enumerate() {
         check_stanford_light(&stages.fragment, light.shader)?;
         let prefix = format!("l{k}_");
-        let mut t =
-            Translator::new(&mut mb, light.shader, &prefix, &[], &light.strings, &format!("light{k}"));
+        let lit = crate::opt::lights::unroll(light.shader, &[], &light.strings);
+        let mut t = Translator::new(&mut mb, &lit, &prefix, &[], &light.strings, &format!("light{k}"));
         t.owner = Some(k);
         t.surface = Some(&stages.fragment);
-        t.block(&light.shader.body)?;
+        t.block(&lit.body)?;
         let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
         drop(t);
         light_functions.push((mb.module.functions.append(f, NSpan::UNDEFINED), light.shader.shader()));
     }
     let body = |mb: &mut ModuleBuilder, shader: &Shader, name: &str| -> Result<_, Diagnostic> {
-        let mut t = Translator::new(mb, shader, "", &bindings, strings, name);
+        let lit = crate::opt::lights::unroll(shader, &bindings, strings);
+        let mut t = Translator::new(mb, &lit, "", &bindings, strings, name);
         t.light_shaders = lights.iter().map(|l| l.shader.shader()).collect();
-        t.block(&shader.body)?;
+        t.block(&lit.body)?;
         let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
         drop(t);
         Ok(mb.module.functions.append(f, NSpan::UNDEFINED))
     };
     let displacement_function = match displacement {
         Some(d) => {
-            let mut t = Translator::new(&mut mb, d.shader, "d_", &[], &d.strings, "displace");
-            t.block(&d.shader.body)?;
+            let lit = crate::opt::lights::unroll(d.shader, &[], &d.strings);
+            let mut t = Translator::new(&mut mb, &lit, "d_", &[], &d.strings, "displace");
+            t.block(&lit.body)?;
             let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
             drop(t);
             Some((mb.module.functions.append(f, NSpan::UNDEFINED), d.shader.shader()))
@@ -174,9 +176,10 @@ pub fn compile_shaded(
                     "this atmosphere",
                 ));
             }
-            let mut t = Translator::new(&mut mb, a.shader, "a_", &[], &a.strings, "atmosphere");
+            let lit = crate::opt::lights::unroll(a.shader, &[], &a.strings);
+            let mut t = Translator::new(&mut mb, &lit, "a_", &[], &a.strings, "atmosphere");
             t.surface = Some(&stages.fragment);
-            t.block(&a.shader.body)?;
+            t.block(&lit.body)?;
             let f = std::mem::replace(&mut t.fb, func::FnBuilder::new("")).finish();
             drop(t);
             Some((mb.module.functions.append(f, NSpan::UNDEFINED), a.shader.shader()))

@@ -61,7 +61,7 @@ impl Uses {
                     self.block(shader, body);
                     self.block(shader, step);
                 }
-                Stmt::Inline { body, .. } => self.block(shader, body),
+                Stmt::Inline { body, .. } | Stmt::Lights { body, .. } => self.block(shader, body),
                 Stmt::Illuminance { args, body } | Stmt::Emit { args, body, .. } => {
                     for a in args {
                         self.expr(shader, *a);

@@ -213,7 +213,7 @@ impl Walk<'_> {
                     }
                 }
             }
-            (Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return, Pass::Reads) => {}
+            (Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Lights { .. }, Pass::Reads) => {}
         }
         match stmt {
             Stmt::Inline { body, .. } => {

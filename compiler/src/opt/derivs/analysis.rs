@@ -177,7 +177,10 @@ impl Analysis<'_> {
                     self.collect(body);
                     self.collect(step);
                 }
-                Stmt::Inline { body, .. } | Stmt::Illuminance { body, .. } | Stmt::Emit { body, .. } => {
+                Stmt::Inline { body, .. }
+                | Stmt::Illuminance { body, .. }
+                | Stmt::Emit { body, .. }
+                | Stmt::Lights { body, .. } => {
                     self.collect(body);
                 }
                 Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
@@ -207,7 +210,7 @@ impl Analysis<'_> {
                         ExprKind::Unary(_, a) | ExprKind::Convert(a) | ExprKind::Index(a, _) => on(a),
                         ExprKind::Binary(_, a, b) | ExprKind::Select(_, a, b) => on(a) || on(b),
                         ExprKind::Construct(parts) => parts.iter().any(on),
-                        ExprKind::FromSpace { value, .. } => on(value),
+                        ExprKind::FromSpace { value, .. } | ExprKind::LightSum { value, .. } => on(value),
                         ExprKind::Builtin(b, args) => {
                             !is_consumer(b)
                                 && (calls::is_source(b) || calls::operands(b, args).iter().any(on))
@@ -245,7 +248,7 @@ impl Analysis<'_> {
             ExprKind::Unary(_, a) | ExprKind::Convert(a) | ExprKind::Index(a, _) => self.work.push(*a),
             ExprKind::Binary(_, a, b) | ExprKind::Select(_, a, b) => self.work.extend([*a, *b]),
             ExprKind::Construct(parts) => self.work.extend(parts),
-            ExprKind::FromSpace { value, .. } => self.work.push(*value),
+            ExprKind::FromSpace { value, .. } | ExprKind::LightSum { value, .. } => self.work.push(*value),
             ExprKind::Builtin(b, args) => {
                 if !is_consumer(b) {
                     self.work.extend(calls::operands(b, args));

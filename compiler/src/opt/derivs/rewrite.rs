@@ -117,6 +117,10 @@ impl Diff<'_> {
                     let body = self.block(body);
                     out.push(Stmt::Emit { solar, args, body });
                 }
+                Stmt::Lights { lights, body } => {
+                    let body = self.block(body);
+                    out.push(Stmt::Lights { lights, body });
+                }
                 Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => out.push(stmt),
             }
         }

@@ -124,6 +124,8 @@ impl<'s> Diff<'s> {
                 }
             }
             ExprKind::Builtin(b, args) => self.call(e, b, &args, axis),
+            // Made after this pass, by `opt::lights`.
+            ExprKind::LightSum { .. } => None,
         };
         self.b.span = outer;
         found

@@ -78,7 +78,7 @@ fn reachable(shader: &Shader, block: &Block, out: &mut std::collections::HashSet
                 reachable(shader, body, out);
                 reachable(shader, step, out);
             }
-            Stmt::Inline { body, .. } => reachable(shader, body, out),
+            Stmt::Inline { body, .. } | Stmt::Lights { body, .. } => reachable(shader, body, out),
             Stmt::Illuminance { args, body } | Stmt::Emit { args, body, .. } => {
                 for a in args {
                     expr(shader, *a, out);
@@ -93,7 +93,10 @@ fn reachable(shader: &Shader, block: &Block, out: &mut std::collections::HashSet
 fn operands(kind: &ExprKind) -> Vec<ExprId> {
     match kind {
         ExprKind::Literal(_) | ExprKind::Local(_) | ExprKind::Global(_) | ExprKind::Seed(..) => vec![],
-        ExprKind::Unary(_, a) | ExprKind::Convert(a) | ExprKind::FromSpace { value: a, .. } => vec![*a],
+        ExprKind::Unary(_, a)
+        | ExprKind::Convert(a)
+        | ExprKind::FromSpace { value: a, .. }
+        | ExprKind::LightSum { value: a, .. } => vec![*a],
         ExprKind::Binary(_, a, b) | ExprKind::Index(a, b) => vec![*a, *b],
         ExprKind::Select(c, a, b) => vec![*c, *a, *b],
         ExprKind::Construct(parts) | ExprKind::Builtin(_, parts) => parts.clone(),
@@ -218,7 +221,7 @@ fn well_typed(shader: &Shader, before: &Shader) {
                     n == e.ty.base.components()
                 }
             },
-            ExprKind::FromSpace { value, .. } => e.ty == ty(*value),
+            ExprKind::FromSpace { value, .. } | ExprKind::LightSum { value, .. } => e.ty == ty(*value),
             ExprKind::Index(base, index) => e.ty == ty(*base).element() && ty(*index).base.is_integer(),
             ExprKind::Select(c, a, b) => ty(*c) == Type::BOOL && ty(*a) == e.ty && ty(*b) == e.ty,
             ExprKind::Builtin(b, args) => {

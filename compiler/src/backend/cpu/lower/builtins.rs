@@ -50,9 +50,6 @@ impl Lower<'_> {
     ) -> Result<Val, Diagnostic> {
         let span = self.shader.expr(id).span;
         let ret = self.shader.expr(id).ty;
-        if b.id == B::Integrate {
-            return self.integrate(args[0]);
-        }
         let vals: Vec<Val> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
         let f = |i: usize| vals[i].floats();
         let is_int = matches!(ret.base, Base::Int | Base::Uint);
@@ -211,7 +208,6 @@ impl Lower<'_> {
             }
             B::Reflect => Val::Float(self.reflect(f(0), f(1))),
             B::Refract => Val::Float(self.refract(f(0), f(1), f(2)[0])),
-            B::Ambient => self.ambient(),
             B::LightSource => self.lightsource(&vals[0], args[1], span)?,
             B::Surface => self.surface_message(&vals[0], &vals[1], args[1], span)?,
             B::Concat => Val::Str(
@@ -297,23 +293,16 @@ impl Lower<'_> {
             },
             // A string the semantic stage computes (`format` of literals): no call of it remains.
             B::Format => return Err(no_implementation(b, span)),
-            B::Integrate => unreachable!("summed above, before its argument is lowered"),
+            B::Ambient | B::Integrate => {
+                return Err(Diagnostic::error(
+                    DiagCode::Internal,
+                    format!("`{}` reached the interpreter as a built-in", b.id),
+                    span,
+                    "this call",
+                )
+                .with_note("opt::lights::unroll makes it a sum over the bound lights"));
+            }
         })
-    }
-
-    /// `integrate(x)`: the sum of a per-light value over the bound lights, also where it is
-    /// itself part of a per-light value (`integrate(integrate(a) * b)`: the inner sum is over
-    /// every light, as in the WGSL backend, not the outer light's term).
-    fn integrate(&mut self, arg: ExprId) -> Result<Val, Diagnostic> {
-        let n = self.shader.expr(arg).ty.base.components() as usize;
-        let mut sum = vec![self.emit.float(0.0); n];
-        for k in 0..self.binding.lights.len() {
-            let outer = self.light.replace(k);
-            let v = self.expr(arg);
-            self.light = outer;
-            sum = self.zip(Binary::Add, &sum, v?.floats());
-        }
-        Ok(Val::Float(sum))
     }
 
     /// `lightsource(name, v)` inside `illuminance`, visiting light `self.light`: when the light
@@ -509,21 +498,5 @@ impl Lower<'_> {
             }
         };
         Ok(index as u32)
-    }
-
-    /// RenderMan's `ambient()`: the sum of the ambient lights' `Cl`. (The other light sums are
-    /// written in the language, `compiler/stdlib/builtins.sl`.)
-    fn ambient(&mut self) -> Val {
-        let mut sum = vec![self.emit.float(0.0); 3];
-        for k in 0..self.binding.lights.len() {
-            if !self.binding.lights[k].ambient {
-                continue;
-            }
-            self.light = Some(k);
-            let cl = self.global_named("Cl").floats().to_vec();
-            self.light = None;
-            sum = self.zip(Binary::Add, &sum, &cl);
-        }
-        Val::Float(sum)
     }
 }

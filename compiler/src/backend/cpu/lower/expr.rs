@@ -54,6 +54,16 @@ impl Lower<'_> {
                 let vals: Vec<Val> = parts.iter().map(|p| self.expr(*p)).collect::<Result<_, _>>()?;
                 self.construct(&vals, e.ty)
             }
+            ExprKind::LightSum { lights, value } => {
+                let mut sum = vec![self.emit.float(0.0); e.ty.base.components() as usize];
+                for &k in lights {
+                    let outer = self.light.replace(k as usize);
+                    let v = self.expr(*value);
+                    self.light = outer;
+                    sum = self.zip(Binary::Add, &sum, v?.floats());
+                }
+                Val::Float(sum)
+            }
             ExprKind::FromSpace { space, value } => {
                 let v = self.expr(*value)?;
                 let ty = self.shader.expr(*value).ty;

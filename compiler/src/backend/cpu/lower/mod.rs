@@ -81,6 +81,7 @@ pub struct Lowered {
 
 /// Compiles `shader` (after `opt::derivs`) for `binding`.
 pub fn lower(shader: &Shader, binding: &Binding) -> Result<Lowered, Diagnostic> {
+    let shader = &crate::opt::lights::unroll(shader, &binding.lights, &binding.strings);
     let mut l = Lower::new(shader, binding);
     l.allocate();
     let mut defaults = Vec::new();
@@ -371,11 +372,6 @@ impl<'a> Lower<'a> {
 
     pub(crate) fn memo_put(&mut self, id: ExprId, v: &Val) {
         self.memo.insert((id, self.light), v.clone());
-    }
-
-    /// Whether an expression reads a per-light value (and so runs once per light).
-    pub fn perlight(&self, id: ExprId) -> bool {
-        self.shader.expr(id).rate.perlight
     }
 
     /// The kind of an expression.

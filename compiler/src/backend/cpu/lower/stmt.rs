@@ -2,7 +2,7 @@
 //! constructs, unrolled over the binding's lights.
 
 use super::{Lower, Val};
-use crate::backend::cpu::code::{Binary, Compare, IntBinary, Node, Reg, Unary};
+use crate::backend::cpu::code::{IntBinary, Node, Reg};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind, Literal, Place, Stmt};
@@ -38,16 +38,6 @@ pub(crate) struct Dynamic {
 
 impl Lower<'_> {
     pub(super) fn statement(&mut self, stmt: &Stmt) -> Result<(), Diagnostic> {
-        if self.light.is_none() && self.statement_is_perlight(stmt) {
-            // Stanford per-light computation: once per bound light.
-            for k in 0..self.binding.lights.len() {
-                self.light = Some(k);
-                let result = self.statement(stmt);
-                self.light = None;
-                result?;
-            }
-            return Ok(());
-        }
         self.next_statement();
         match stmt {
             Stmt::Store { place, value, span } => {
@@ -90,31 +80,25 @@ impl Lower<'_> {
                 }
                 self.emit.out.push(Node::Function(body));
             }
-            Stmt::Illuminance { args, body } => self.illuminance(args, body)?,
-            Stmt::Emit { solar, args, body } => self.emission(*solar, args, body)?,
-        }
-        Ok(())
-    }
-
-    /// Whether a statement computes a per-light value outside a light loop (Stanford style).
-    fn statement_is_perlight(&self, stmt: &Stmt) -> bool {
-        let place_perlight = |p: &Place| {
-            let mut p = p;
-            loop {
-                match p {
-                    Place::Local(l) => return self.shader.local(*l).rate.perlight,
-                    Place::Global(g) => return g.perlight,
-                    Place::Index(inner, _) => p = inner,
+            Stmt::Lights { lights, body } => {
+                for &k in lights {
+                    let outer = self.light.replace(k as usize);
+                    let result = body.iter().try_for_each(|s| self.statement(s));
+                    self.light = outer;
+                    result?;
                 }
             }
-        };
-        match stmt {
-            Stmt::Store { place, value, .. } => place_perlight(place) || self.perlight(*value),
-            Stmt::Eval(id) => self.perlight(*id),
-            Stmt::If { cond, .. } => self.perlight(*cond),
-            Stmt::Loop { cond, .. } => cond.is_some_and(|c| self.perlight(c)),
-            _ => false,
+            Stmt::Illuminance { .. } | Stmt::Emit { .. } => {
+                return Err(Diagnostic::error(
+                    DiagCode::Internal,
+                    "a light construct reached the interpreter",
+                    self.shader.span,
+                    "in this shader",
+                )
+                .with_note("opt::lights::unroll must run before the interpreter's lowering"));
+            }
         }
+        Ok(())
     }
 
     /// A condition as a bool register.
@@ -245,88 +229,6 @@ impl Lower<'_> {
             }
         }
         Ok(())
-    }
-
-    /// `illuminance([category,] position [, axis, angle]) body`: the body once per bound
-    /// non-ambient light (of the category), in the lanes where the light is inside the cone.
-    fn illuminance(&mut self, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
-        let (category, rest) = match args.first().map(|a| self.shader.expr(*a).ty.base) {
-            Some(Base::String) => (self.string_of(args[0])?, &args[1..]),
-            _ => (None, args),
-        };
-        for k in 0..self.binding.lights.len() {
-            let light = &self.binding.lights[k];
-            if !light.visited_by(category.as_deref()) {
-                continue;
-            }
-            self.light = Some(k);
-            self.next_statement();
-            let cone = match rest {
-                [_, axis, angle] => {
-                    let l = self.global_named("L");
-                    let axis = self.expr(*axis)?;
-                    let angle = self.expr(*angle)?;
-                    Some(self.inside_cone(l.floats(), axis.floats(), angle.floats()[0]))
-                }
-                _ => None,
-            };
-            let inner = self.block(body);
-            self.light = None;
-            let inner = inner?;
-            match cone {
-                Some(cond) => self.emit.out.push(Node::If { cond, then: inner, otherwise: Vec::new() }),
-                None => self.emit.out.push(Node::Function(inner)),
-            }
-        }
-        Ok(())
-    }
-
-    /// `illuminate(position [, axis, angle])` or `solar([axis, angle])` in a light shader: sets `L`
-    /// (from the light towards the surface point `Ps`) and runs the body where the point is lit.
-    fn emission(&mut self, solar: bool, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
-        self.next_statement();
-        let l = self.global_named("L");
-        let values: Vec<Val> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
-        let direction: Vec<Reg> = if solar {
-            match values.first() {
-                Some(axis) => axis.floats().to_vec(),
-                None => l.floats().to_vec(),
-            }
-        } else {
-            let ps = self.global_named("Ps");
-            let from = values[0].floats().to_vec();
-            (0..3).map(|c| self.emit.binary(Binary::Sub, ps.floats()[c], from[c])).collect()
-        };
-        let l_access = whole(l.clone());
-        self.store(&l_access, &Val::Float(direction), Span::default())?;
-        let (axis, angle) =
-            if solar { (values.first(), values.get(1)) } else { (values.get(1), values.get(2)) };
-        let cone = match (axis, angle) {
-            (Some(axis), Some(angle)) => {
-                let (axis, angle) = (axis.floats().to_vec(), angle.floats()[0]);
-                Some(self.inside_cone(l.floats(), &axis, angle))
-            }
-            _ => None,
-        };
-        let inner = self.block(body)?;
-        match cone {
-            Some(cond) => self.emit.out.push(Node::If { cond, then: inner, otherwise: Vec::new() }),
-            None => self.emit.out.push(Node::Function(inner)),
-        }
-        Ok(())
-    }
-
-    /// Whether the angle between `l` and `axis` is at most `angle`:
-    /// `dot(l, axis) >= cos(angle) * |l| * |axis|`, which needs no normalization.
-    fn inside_cone(&mut self, l: &[Reg], axis: &[Reg], angle: Reg) -> Reg {
-        let dot = self.dot(l, axis);
-        let ll = self.dot(l, l);
-        let aa = self.dot(axis, axis);
-        let lengths = self.emit.binary(Binary::Mul, ll, aa);
-        let lengths = self.emit.unary(Unary::Sqrt, lengths);
-        let cos = self.emit.unary(Unary::Cos, angle);
-        let bound = self.emit.binary(Binary::Mul, cos, lengths);
-        self.emit.compare(Compare::Ge, dot, bound)
     }
 
     /// A predefined variable of this shader by name (`L`, `Ps`), empty when it has none.

@@ -58,6 +58,17 @@ impl Translator<'_> {
                 };
                 self.fb.add(Expression::Unary { op, expr: v })
             }
+            ExprKind::LightSum { lights, value } => {
+                let zero = self.float(0.0);
+                let mut sum = self.splat(zero, e.ty.base.components());
+                for &k in lights {
+                    let outer = self.light.replace(k as usize);
+                    let v = self.expr(*value);
+                    self.light = outer;
+                    sum = self.binary(naga::BinaryOperator::Add, sum, v?);
+                }
+                sum
+            }
             ExprKind::Binary(op, a, b) if self.shader.expr(*a).ty.base == Base::String => {
                 // Strings are known at compile time: so is their comparison.
                 let (Some(x), Some(y)) = (self.fold_string(*a), self.fold_string(*b)) else {

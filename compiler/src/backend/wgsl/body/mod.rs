@@ -217,15 +217,6 @@ impl<'a> Translator<'a> {
     /// Translates one statement (once per light for Stanford per-light statements); `before` is
     /// the statement before it in its block (a loop's counter may be set there).
     pub(crate) fn statement(&mut self, stmt: &Stmt, before: Option<&Stmt>) -> Result<(), Diagnostic> {
-        if self.light.is_none() && self.statement_is_perlight(stmt) {
-            for k in 0..self.lights.len() {
-                self.light = Some(k);
-                let r = self.statement(stmt, before);
-                self.light = None;
-                r?;
-            }
-            return Ok(());
-        }
         self.memo.clear();
         match stmt {
             // A constant table's declaration: the module variable's initializer holds it.
@@ -287,8 +278,20 @@ impl<'a> Translator<'a> {
                 self.fb.push(Statement::Return { value });
             }
             Stmt::Inline { function, body, .. } => self.inline(function, body)?,
-            Stmt::Illuminance { args, body } => self.illuminance(args, body)?,
-            Stmt::Emit { solar, args, body } => self.emission(*solar, args, body)?,
+            Stmt::Lights { lights, body } => {
+                for &k in lights {
+                    let outer = self.light.replace(k as usize);
+                    let r = self.block(body);
+                    self.light = outer;
+                    r?;
+                }
+            }
+            Stmt::Illuminance { .. } | Stmt::Emit { .. } => {
+                return Err(crate::backend::wgsl::internal(
+                    self.shader.span,
+                    "internal error: a light construct reached the WGSL backend (opt::lights::unroll)".into(),
+                ));
+            }
         }
         Ok(())
     }
@@ -398,25 +401,6 @@ impl<'a> Translator<'a> {
         Ok(())
     }
 
-    /// Whether a statement computes a per-light value outside a light loop (Stanford style).
-    pub(crate) fn statement_is_perlight(&self, stmt: &Stmt) -> bool {
-        let perlight = |id: &ExprId| self.shader.expr(*id).rate.perlight;
-        let place_perlight = |mut p: &Place| loop {
-            match p {
-                Place::Local(l) => return self.shader.local(*l).rate.perlight,
-                Place::Global(g) => return g.perlight,
-                Place::Index(inner, _) => p = inner,
-            }
-        };
-        match stmt {
-            Stmt::Store { place, value, .. } => place_perlight(place) || perlight(value),
-            Stmt::Eval(id) => perlight(id),
-            Stmt::If { cond, .. } => perlight(cond),
-            Stmt::Loop { cond, .. } => cond.as_ref().is_some_and(perlight),
-            _ => false,
-        }
-    }
-
     /// The value of local `l` when its declaration is its only store.
     pub(crate) fn only_initialiser(&self, l: LocalId) -> Option<ExprId> {
         self.stores.get(l.0 as usize)?.only_initialiser(self.shader.local(l).span)
@@ -469,95 +453,6 @@ impl<'a> Translator<'a> {
     /// A condition as a naga `bool`.
     pub fn condition(&mut self, id: ExprId) -> Result<Value, Diagnostic> {
         self.expr(id)
-    }
-
-    // ---------------------------------------------------------------------------------------------
-    // Lights.
-
-    /// `illuminance`: the body once per bound non-ambient light of the category, inside its cone.
-    pub(crate) fn illuminance(&mut self, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
-        let (category, rest) = match args.first().map(|a| self.shader.expr(*a).ty.base) {
-            Some(Base::String) => (self.fold_string(args[0]), &args[1..]),
-            _ => (None, args),
-        };
-        for k in 0..self.lights.len() {
-            let light = &self.lights[k];
-            if !light.visited_by(category.as_deref()) {
-                continue;
-            }
-            self.light = Some(k);
-            self.memo.clear();
-            let cone = match rest {
-                [_, axis, angle] => {
-                    let l = self.global_value("L")?;
-                    let axis = self.expr(*axis)?;
-                    let angle = self.expr(*angle)?;
-                    Some(self.inside_cone(l, axis, angle))
-                }
-                _ => None,
-            };
-            self.fb.open();
-            let r = self.block(body);
-            let inner = self.fb.close();
-            self.light = None;
-            r?;
-            match cone {
-                Some(c) => {
-                    self.fb.push(Statement::If { condition: c, accept: inner, reject: naga::Block::new() })
-                }
-                None => self.fb.push(Statement::Block(inner)),
-            }
-        }
-        Ok(())
-    }
-
-    /// `illuminate`/`solar` in a light shader: sets `L` (from the light to `Ps`) and runs the body
-    /// where the point is inside the cone.
-    pub(crate) fn emission(&mut self, solar: bool, args: &[ExprId], body: &[Stmt]) -> Result<(), Diagnostic> {
-        self.memo.clear();
-        let vals: Vec<Value> = args.iter().map(|a| self.expr(*a)).collect::<Result<_, _>>()?;
-        let l_var = self.global_var("L", Type::of(Base::Vector), false);
-        let direction = if solar {
-            match vals.first() {
-                Some(axis) => *axis,
-                None => {
-                    let p = self.pointer(l_var);
-                    self.load(p)
-                }
-            }
-        } else {
-            let ps = self.global_value("Ps")?;
-            self.binary(BinaryOperator::Subtract, ps, vals[0])
-        };
-        let p = self.pointer(l_var);
-        self.store(p, direction);
-        let (axis, angle) = if solar { (vals.first(), vals.get(1)) } else { (vals.get(1), vals.get(2)) };
-        let cone = match (axis, angle) {
-            (Some(&axis), Some(&angle)) => Some(self.inside_cone(direction, axis, angle)),
-            _ => None,
-        };
-        self.fb.open();
-        self.block(body)?;
-        let inner = self.fb.close();
-        match cone {
-            Some(c) => {
-                self.fb.push(Statement::If { condition: c, accept: inner, reject: naga::Block::new() })
-            }
-            None => self.fb.push(Statement::Block(inner)),
-        }
-        Ok(())
-    }
-
-    /// `dot(l, axis) >= cos(angle) * sqrt(dot(l, l) * dot(axis, axis))`, as the interpreter.
-    pub(crate) fn inside_cone(&mut self, l: Value, axis: Value, angle: Value) -> Value {
-        let dot = self.math2(MathFunction::Dot, l, axis);
-        let ll = self.math2(MathFunction::Dot, l, l);
-        let aa = self.math2(MathFunction::Dot, axis, axis);
-        let lengths = self.binary(BinaryOperator::Multiply, ll, aa);
-        let lengths = self.math1(MathFunction::Sqrt, lengths);
-        let cos = self.math1(MathFunction::Cos, angle);
-        let bound = self.binary(BinaryOperator::Multiply, cos, lengths);
-        self.binary(BinaryOperator::GreaterEqual, dot, bound)
     }
 
     /// The value of a predefined variable of this shader by name.

@@ -143,6 +143,29 @@ mod tests {
     }
 
     #[test]
+    fn the_pair_table_holds_each_permutation_entry_beside_the_next() {
+        // noise.sl's PATINA_PERLIN_PAIRS is written out as literals: entry i must be
+        // p[i] + 256 p[(i + 1) mod 256] for Perlin's permutation p above it.
+        let noise = super::MODULES.iter().find(|(n, _)| *n == "noise.sl").expect("noise.sl").1;
+        let table = |name: &str| -> Vec<u32> {
+            let start = noise.find(&format!("#define {name} {{")).expect("the table's macro");
+            let body = &noise[start..];
+            let body = &body[body.find('{').unwrap() + 1..body.find('}').unwrap()];
+            body.split(|c: char| !c.is_ascii_digit())
+                .filter(|t| !t.is_empty())
+                .map(|t| t.parse().unwrap())
+                .collect()
+        };
+        let (p, pairs) = (table("PATINA_PERLIN_PERMUTATION"), table("PATINA_PERLIN_PAIRS"));
+        assert_eq!(p.len(), 256);
+        let mut sorted = p.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..256).collect::<Vec<u32>>(), "a permutation of 0..255");
+        let want: Vec<u32> = (0..256).map(|i| p[i] + 256 * p[(i + 1) % 256]).collect();
+        assert_eq!(pairs, want);
+    }
+
+    #[test]
     fn a_stanford_file_can_include_a_renderman_style_module() {
         // lighting.sl's uncalled functions use `illuminance`, which a Stanford-style file would
         // reject if it checked them in its own style.

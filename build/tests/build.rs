@@ -174,13 +174,15 @@ fn generated_structs_lay_out_the_example_shaders_blocks() {
         }
     }
     // A constant table's values are a constant of the member's name, padded as the block is:
-    // planet's improved noise reads Perlin's permutation (151, 160, 137, ...).
+    // planet's improved noise reads Perlin's permutation in pairs (151 + 256 * 160, 160 + 256 *
+    // 137, 137 + 256 * 91, ...: compiler/stdlib/noise.sl's PATINA_PERLIN_PAIRS; WGSL names that
+    // end in a digit get a `_`).
     let planet = &rust[rust.find("pub mod planet {").unwrap()..];
     assert!(
         planet.contains(
-            "pub const perlin_p: [[i32; 4]; 256] = [[151, 0, 0, 0], [160, 0, 0, 0], [137, 0, 0, 0],"
+            "pub const perlin_p2_: [[i32; 4]; 256] = [[41111, 0, 0, 0], [35232, 0, 0, 0], [23433, 0, 0, 0],"
         ),
-        "planet's permutation table"
+        "planet's permutation table, in pairs"
     );
     // A host field says how to fill it.
     let plastic = &rust[rust.find("pub mod plastic {").unwrap()..];

@@ -1,6 +1,7 @@
 //! Built-in functions in naga IR, with the interpreter's definitions (`backend/cpu/lower`).
 //!
-//! Where WGSL has the function and is exact (`floor`, `min`, `mix`, ...) its own is used; where
+//! Where WGSL has the function and is exact (`floor`, `min`, `mix`, ...) its own is used (the
+//! one-operation built-ins are `backend::ops`' table, beside the interpreter's instruction); where
 //! the interpreter fixes an order of operations that WGSL leaves open (`dot`, `length`, matrix
 //! products, `smoothstep`, `inversesqrt`) the sequence is written out, so that both backends give
 //! the same bits. Transcendentals (`sin`, `exp`, `pow`, ...) are WGSL's, within its accuracy
@@ -9,6 +10,7 @@
 //! `translate`, `scale` and `determinant` are the library's (`compiler/stdlib/builtins.sl`), and
 //! `spline` is arithmetic on its knots by then (`opt::splines`).
 
+use crate::backend::ops::{CoreOp, core_op, not_core};
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
 
 use super::body::{Translator, Value};
@@ -54,13 +56,6 @@ impl Translator<'_> {
         Ok(match b.id {
             B::Radians => self.scale(v(0), std::f64::consts::PI / 180.0),
             B::Degrees => self.scale(v(0), 180.0 / std::f64::consts::PI),
-            B::Sin => self.math1(M::Sin, v(0)),
-            B::Cos => self.math1(M::Cos, v(0)),
-            B::Tan => self.math1(M::Tan, v(0)),
-            B::Asin => self.math1(M::Asin, v(0)),
-            B::Acos => self.math1(M::Acos, v(0)),
-            B::Atan if args.len() == 1 => self.math1(M::Atan, v(0)),
-            B::Atan => self.math2(M::Atan2, v(0), v(1)),
             B::Pow => {
                 let y = wide(self, 1);
                 if self.never_negative(args[0], 0) {
@@ -70,8 +65,6 @@ impl Translator<'_> {
                     self.pow(v(0), y, n)
                 }
             }
-            B::Exp => self.math1(M::Exp, v(0)),
-            B::Sqrt => self.math1(M::Sqrt, v(0)),
             // 1 / sqrt(x), as the interpreter (WGSL's inverseSqrt may differ by 2 ulp).
             B::InverseSqrt if self.fast() => self.math1(M::InverseSqrt, v(0)),
             B::InverseSqrt => {
@@ -79,8 +72,7 @@ impl Translator<'_> {
                 let root = self.math1(M::Sqrt, v(0));
                 self.div(one, root)
             }
-            B::Log if args.len() == 1 => self.math1(M::Log, v(0)),
-            B::Log => {
+            B::Log if args.len() == 2 => {
                 let (x, base) = (self.math1(M::Log, v(0)), self.math1(M::Log, v(1)));
                 self.binary(Op::Divide, x, base)
             }
@@ -90,11 +82,25 @@ impl Translator<'_> {
                 self.modulo(v(0), b)
             }
             B::Abs if ret.base == Base::Uint => v(0),
-            B::Abs => self.math1(M::Abs, v(0)),
             B::Sign => self.sign(v(0)),
-            B::Floor => self.math1(M::Floor, v(0)),
-            B::Ceil => self.math1(M::Ceil, v(0)),
-            B::Round => self.math1(M::Round, v(0)),
+            // WGSL's `abs` is exact for signed integers too.
+            B::Sin
+            | B::Cos
+            | B::Tan
+            | B::Asin
+            | B::Acos
+            | B::Atan
+            | B::Exp
+            | B::Sqrt
+            | B::Log
+            | B::Abs
+            | B::Floor
+            | B::Ceil
+            | B::Round => match core_op(b.id, args.len()) {
+                Some(CoreOp::Unary { wgsl, .. }) => self.math1(wgsl, v(0)),
+                Some(CoreOp::Binary { wgsl, .. }) => self.math2(wgsl, v(0), v(1)),
+                None => return Err(not_core(b.id, span)),
+            },
             B::Min | B::Max => {
                 let fun = if b.id == B::Min { M::Min } else { M::Max };
                 let mut acc = wide(self, 0);

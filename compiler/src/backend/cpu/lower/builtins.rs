@@ -4,6 +4,7 @@
 use super::expr::pick;
 use super::{Lower, Val};
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, PrintArg, Reg, Ternary, Unary};
+use crate::backend::ops::{CoreOp, core_op, not_core};
 use crate::backend::{POINT_INDEX, UNIFORM_RANDOM_POINT};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::builtin::Builtin;
@@ -57,19 +58,9 @@ impl Lower<'_> {
         Ok(match b.id {
             B::Radians => self.scale(f(0), std::f64::consts::PI / 180.0),
             B::Degrees => self.scale(f(0), 180.0 / std::f64::consts::PI),
-            B::Sin => self.each(Unary::Sin, f(0)),
-            B::Cos => self.each(Unary::Cos, f(0)),
-            B::Tan => self.each(Unary::Tan, f(0)),
-            B::Asin => self.each(Unary::Asin, f(0)),
-            B::Acos => self.each(Unary::Acos, f(0)),
-            B::Atan if args.len() == 1 => self.each(Unary::Atan, f(0)),
-            B::Atan => Val::Float(self.zip(Binary::Atan2, f(0), f(1))),
             B::Pow => Val::Float(self.zip(Binary::Pow, f(0), f(1))),
-            B::Exp => self.each(Unary::Exp, f(0)),
-            B::Sqrt => self.each(Unary::Sqrt, f(0)),
             B::InverseSqrt => self.each(Unary::InverseSqrt, f(0)),
-            B::Log if args.len() == 1 => self.each(Unary::Log, f(0)),
-            B::Log => {
+            B::Log if args.len() == 2 => {
                 let (x, base) = (self.emit.unary(Unary::Log, f(0)[0]), self.emit.unary(Unary::Log, f(1)[0]));
                 Val::Float(vec![self.emit.binary(Binary::Div, x, base)])
             }
@@ -78,11 +69,24 @@ impl Lower<'_> {
                 Val::Int(vals[0].ints().iter().map(|x| self.emit.int_unary(IntUnary::Abs, *x)).collect())
             }
             B::Abs if is_int => vals[0].clone(),
-            B::Abs => self.each(Unary::Abs, f(0)),
             B::Sign => self.each(Unary::Sign, f(0)),
-            B::Floor => self.each(Unary::Floor, f(0)),
-            B::Ceil => self.each(Unary::Ceil, f(0)),
-            B::Round => self.each(Unary::Round, f(0)),
+            B::Sin
+            | B::Cos
+            | B::Tan
+            | B::Asin
+            | B::Acos
+            | B::Atan
+            | B::Exp
+            | B::Sqrt
+            | B::Log
+            | B::Abs
+            | B::Floor
+            | B::Ceil
+            | B::Round => match core_op(b.id, args.len()) {
+                Some(CoreOp::Unary { cpu, .. }) => self.each(cpu, f(0)),
+                Some(CoreOp::Binary { cpu, .. }) => Val::Float(self.zip(cpu, f(0), f(1))),
+                None => return Err(not_core(b.id, span)),
+            },
             B::Min | B::Max if is_int => {
                 let op = match (b.id == B::Min, signed) {
                     (true, true) => IntBinary::MinI,

@@ -43,6 +43,8 @@ pub const LIBRARY_BUILTINS: &[BuiltinId] = &[
     BuiltinId::Scale,
     BuiltinId::Determinant,
     BuiltinId::Fresnel,
+    BuiltinId::Reflect,
+    BuiltinId::Refract,
 ];
 
 /// The colour spaces (docs/builtins.md), converted by `compiler/stdlib/builtins.sl` for

@@ -1,7 +1,8 @@
 // The built-in functions written in the language: RenderMan's `noise`, `snoise`, `pnoise` and
 // `cellnoise` in every overload of docs/builtins.md, the light sums `diffuse`, `specular`,
 // `phong` and the one-light `specularbrdf`, `ctransform` and the colour casts, and the geometry
-// and matrix built-ins `ptlined`, `rotate`, `translate`, `scale`, `determinant` and `fresnel`
+// and matrix built-ins `reflect`, `refract`, `ptlined`, `rotate`, `translate`, `scale`,
+// `determinant` and `fresnel`
 // (`__fresnel_void`: a built-in's `output` arguments are written back as a user function's are).
 // The semantic stage inlines `__NAME_RESULT`
 // (overloaded by parameter types) where a shader calls built-in NAME with result type RESULT, so
@@ -322,13 +323,32 @@ color __ctransform_color(string to; color c)
     return __ctransform_color("rgb", to, c);
 }
 
-// Geometry and matrices: `ptlined`, `rotate` (of a point and of a matrix), `translate`, `scale`,
-// `determinant` and `fresnel`. Each is written operation for operation as the interpreter computed
+// Geometry and matrices: `reflect`, `refract`, `ptlined`, `rotate` (of a point and of a matrix),
+// `translate`, `scale`, `determinant` and `fresnel`. Each is written operation for operation as the interpreter computed
 // it natively before it moved here, so that its bits stay the same (docs/numerics.md: exact on
 // both backends): products and sums in the order written, sums left to right. `dot` is the
 // built-in, never the `.` operator (which the GPU backend hands to WGSL's `dot`, whose order of
 // summation is the driver's). Matrices are row by row (`m[i][j]`, row i, column j) in RenderMan's
 // row-vector convention, points transformed as `(p, 1) m`.
+
+// The reflection of I about N: I - 2 (N . I) N, WGSL's `reflect` (RI spec 3.2 section 15.3).
+vector __reflect_vector(vector I; normal N)
+{
+    vector n = N;
+    return I - (2 * dot(n, I)) * n;
+}
+
+// The refraction of I through a surface of normal N for the ratio of indices `eta`, WGSL's
+// `refract`: with d = N . I and k = 1 - eta^2 (1 - d^2), eta I - (eta d + sqrt(k)) N, and 0 under
+// total internal reflection (k < 0). Neither I nor N is normalized here.
+vector __refract_vector(vector I; normal N; float eta)
+{
+    vector n = N;
+    float d = dot(n, I);
+    float k = 1 - eta * eta * (1 - d * d);
+    vector r = eta * I - (eta * d + sqrt(k)) * n;
+    return k < 0 ? vector(0) : r;
+}
 
 // The distance from q to the segment from a to b: to the nearest point a + t (b - a), with t
 // clamped to [0, 1] (a point segment, whose t is 0/0 = NaN, clamps to a).

@@ -245,8 +245,6 @@ impl Translator<'_> {
                 let neg = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: v(0) });
                 self.pick(facing, v(0), neg)
             }
-            B::Reflect => self.reflect(v(0), v(1)),
-            B::Refract => self.refract(v(0), v(1), v(2)),
             B::LightSource => self.lightsource(args, span)?,
             B::Surface => self.surface_message(args, span)?,
             B::Transform | B::VTransform | B::NTransform => self.transform(b.id, args, &vals, ret, span)?,
@@ -314,7 +312,9 @@ impl Translator<'_> {
             | B::Translate
             | B::Scale
             | B::Determinant
-            | B::Fresnel => {
+            | B::Fresnel
+            | B::Reflect
+            | B::Refract => {
                 return Err(super::internal(
                     span,
                     format!(
@@ -372,20 +372,6 @@ impl Translator<'_> {
         let len = self.length_parts(&p);
         let len = self.splat(len, 3);
         self.div(v, len)
-    }
-
-    /// `i - 2 * dot(n, i) * n`.
-    pub(super) fn reflect(&mut self, i: Value, n: Value) -> Value {
-        if self.fast() {
-            return self.math2(M::Reflect, i, n);
-        }
-        let (ip, np) = (self.parts(i, 3), self.parts(n, 3));
-        let d = self.dot_parts(&np, &ip);
-        let two = self.float(2.0);
-        let k = self.mul(two, d);
-        let k = self.splat(k, 3);
-        let kn = self.mul(n, k);
-        self.sub(i, kn)
     }
 
     /// `x >= edge ? 1 : 0`, the interpreter's `step` (WGSL's `step` is 1 for a NaN `x` on some

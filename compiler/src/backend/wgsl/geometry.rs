@@ -4,7 +4,7 @@
 //! operation (see `matrices`).
 
 use crate::ir::builtin::BuiltinId;
-use naga::{BinaryOperator as Op, Expression, MathFunction as M, SwizzleComponent as C, VectorSize};
+use naga::{BinaryOperator as Op, Expression, SwizzleComponent as C, VectorSize};
 
 use super::body::{Translator, Value};
 use super::interface::UniformSource;
@@ -193,34 +193,6 @@ impl Translator<'_> {
             vector: v,
             pattern: [C::X, C::Y, C::Z, C::X],
         })
-    }
-
-    /// WGSL `refract(i, n, eta)`, as the interpreter writes it: 0 on total internal reflection.
-    pub(super) fn refract(&mut self, i: Value, n: Value, eta: Value) -> Value {
-        if self.fast() {
-            return self.math3(M::Refract, i, n, eta);
-        }
-        let (ip, np) = (self.parts(i, 3), self.parts(n, 3));
-        let d = self.dot_parts(&np, &ip);
-        let (one, zero) = (self.float(1.0), self.float(0.0));
-        let d2 = self.mul(d, d);
-        let sin2 = self.sub(one, d2);
-        let eta2 = self.mul(eta, eta);
-        let e = self.mul(eta2, sin2);
-        let k = self.sub(one, e);
-        let total = self.binary(Op::Less, k, zero);
-        let root = self.math1(M::Sqrt, k);
-        let ed = self.mul(eta, d);
-        let m = self.add(ed, root);
-        let out: Vec<Value> = (0..3)
-            .map(|c| {
-                let ei = self.mul(ip[c], eta);
-                let mn = self.mul(np[c], m);
-                let r = self.sub(ei, mn);
-                self.pick(total, zero, r)
-            })
-            .collect();
-        self.vector(&out)
     }
 
     /// Stores into the variable passed as an `output` argument (anything else is not stored, as

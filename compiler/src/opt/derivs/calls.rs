@@ -78,8 +78,6 @@ pub(super) fn rule(b: &Builtin) -> Rule {
         | B::Length
         | B::Normalize
         | B::Distance
-        | B::Reflect
-        | B::Refract
         | B::Depth
         | B::Rgb
         | B::Clamp01
@@ -130,7 +128,9 @@ pub(super) fn rule(b: &Builtin) -> Rule {
         | B::Translate
         | B::Scale
         | B::Determinant
-        | B::Fresnel => Rule::Library,
+        | B::Fresnel
+        | B::Reflect
+        | B::Refract => Rule::Library,
     }
 }
 
@@ -377,7 +377,6 @@ impl Diff<'_> {
             (B::Normalize, _) => self.d_normalize(e, a, axis),
             (B::Distance, _) => self.d_distance(e, a, axis),
             (B::FaceForward, _) => self.d_faceforward(e, a, axis),
-            (B::Reflect | B::Refract, _) => self.d_reflect_refract(e, a, axis),
             (B::Depth, _) => self.d_depth(e, a, axis),
             (B::Invert, _) => self.d_invert(e, a, axis),
             // No chain rule: their rule gives them no operands, so no call of them is active.
@@ -430,7 +429,9 @@ impl Diff<'_> {
                 | B::Translate
                 | B::Scale
                 | B::Determinant
-                | B::Fresnel,
+                | B::Fresnel
+                | B::Reflect
+                | B::Refract,
                 _,
             ) => None,
         }

@@ -69,12 +69,6 @@ impl Diff<'_> {
         Some(self.b.select(kept, dn, flipped))
     }
 
-    /// The derivative of `reflect` or `refract` (`e` the call, `a` its arguments).
-    pub(super) fn d_reflect_refract(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
-        let expanded = self.shared(e, 0, |s| s.expand_reflect_refract(a));
-        self.d(expanded, axis)
-    }
-
     /// The derivative of `depth` (`e` the call, `a` its arguments).
     pub(super) fn d_depth(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
         // depth is affine in the point: depth(p + dp) - depth(p) = depth(dp) - depth(0).
@@ -96,36 +90,5 @@ impl Diff<'_> {
         let left = self.mul(e, da);
         let product = self.mul(left, e);
         Some(self.b.neg(product))
-    }
-
-    /// reflect(I, N) = I - 2 (I.N) N and refract(I, N, eta) as RenderMan defines them, written out
-    /// so that the general rules differentiate them.
-    fn expand_reflect_refract(&mut self, a: &[ExprId]) -> ExprId {
-        let vector = Type::of(Base::Vector);
-        let (i, n) = (a[0], self.b.convert(a[1], vector));
-        let cos = self.op(BinaryOp::Dot, i, n);
-        if a.len() == 2 {
-            let two = self.lit(2.0);
-            let k = self.mul(two, cos);
-            let back = self.mul(k, n);
-            return self.op(BinaryOp::Sub, i, back);
-        }
-        let eta = a[2];
-        let one = self.lit(1.0);
-        let cos2 = self.mul(cos, cos);
-        let sin2 = self.op(BinaryOp::Sub, one, cos2);
-        let eta2 = self.mul(eta, eta);
-        let s2 = self.mul(eta2, sin2);
-        let k = self.op(BinaryOp::Sub, one, s2);
-        let bent = self.mul(eta, i);
-        let root = self.b.call(BuiltinId::Sqrt, vec![k]);
-        let eta_cos = self.mul(eta, cos);
-        let normal_part = self.op(BinaryOp::Add, eta_cos, root);
-        let along = self.mul(normal_part, n);
-        let refracted = self.op(BinaryOp::Sub, bent, along);
-        let zero = self.lit(0.0);
-        let total = self.op(BinaryOp::Lt, k, zero);
-        let none = self.b.zero(vector);
-        self.b.select(total, none, refracted)
     }
 }

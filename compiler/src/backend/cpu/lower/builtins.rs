@@ -210,8 +210,6 @@ impl Lower<'_> {
                 let neg = self.each(Unary::Neg, f(0));
                 self.select(facing, &vals[0], &neg)
             }
-            B::Reflect => Val::Float(self.reflect(f(0), f(1))),
-            B::Refract => Val::Float(self.refract(f(0), f(1), f(2)[0])),
             B::LightSource => self.lightsource(&vals[0], args[1], span)?,
             B::Surface => self.surface_message(&vals[0], &vals[1], args[1], span)?,
             B::Concat => Val::Str(
@@ -247,7 +245,9 @@ impl Lower<'_> {
             | B::Translate
             | B::Scale
             | B::Determinant
-            | B::Fresnel => {
+            | B::Fresnel
+            | B::Reflect
+            | B::Refract => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
                     format!("`{}` reached the interpreter as a built-in", b.id),
@@ -440,35 +440,6 @@ impl Lower<'_> {
     pub(crate) fn normalize(&mut self, v: &[Reg]) -> Vec<Reg> {
         let len = self.length(v);
         v.iter().map(|x| self.emit.binary(Binary::Div, *x, len)).collect()
-    }
-
-    /// WGSL `reflect(i, n)`: `i - 2 * dot(n, i) * n`.
-    pub(crate) fn reflect(&mut self, i: &[Reg], n: &[Reg]) -> Vec<Reg> {
-        let d = self.dot(n, i);
-        let two = self.emit.float(2.0);
-        let k = self.emit.binary(Binary::Mul, two, d);
-        let kn = self.zip(Binary::Mul, n, &[k]);
-        self.zip(Binary::Sub, i, &kn)
-    }
-
-    /// WGSL `refract(i, n, eta)`: 0 on total internal reflection.
-    pub(crate) fn refract(&mut self, i: &[Reg], n: &[Reg], eta: Reg) -> Vec<Reg> {
-        let d = self.dot(n, i);
-        let one = self.emit.float(1.0);
-        let zero = self.emit.float(0.0);
-        let d2 = self.emit.binary(Binary::Mul, d, d);
-        let sin2 = self.emit.binary(Binary::Sub, one, d2);
-        let eta2 = self.emit.binary(Binary::Mul, eta, eta);
-        let e = self.emit.binary(Binary::Mul, eta2, sin2);
-        let k = self.emit.binary(Binary::Sub, one, e);
-        let total = self.emit.compare(Compare::Lt, k, zero);
-        let root = self.emit.unary(Unary::Sqrt, k);
-        let ed = self.emit.binary(Binary::Mul, eta, d);
-        let m = self.emit.binary(Binary::Add, ed, root);
-        let ei = self.zip(Binary::Mul, i, &[eta]);
-        let mn = self.zip(Binary::Mul, n, &[m]);
-        let r = self.zip(Binary::Sub, &ei, &mn);
-        r.iter().map(|x| self.emit.select(true, total, zero, *x)).collect()
     }
 
     /// The 3-argument `filterstep(edge, x0, x1)`: the fraction of [x0, x1] at or above `edge`

@@ -45,6 +45,7 @@ pub const LIBRARY_BUILTINS: &[BuiltinId] = &[
     BuiltinId::Fresnel,
     BuiltinId::Reflect,
     BuiltinId::Refract,
+    BuiltinId::Distance,
 ];
 
 /// The colour spaces (docs/builtins.md), converted by `compiler/stdlib/builtins.sl` for

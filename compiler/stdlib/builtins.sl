@@ -1,7 +1,7 @@
 // The built-in functions written in the language: RenderMan's `noise`, `snoise`, `pnoise` and
 // `cellnoise` in every overload of docs/builtins.md, the light sums `diffuse`, `specular`,
 // `phong` and the one-light `specularbrdf`, `ctransform` and the colour casts, and the geometry
-// and matrix built-ins `reflect`, `refract`, `ptlined`, `rotate`, `translate`, `scale`,
+// and matrix built-ins `distance`, `reflect`, `refract`, `ptlined`, `rotate`, `translate`, `scale`,
 // `determinant` and `fresnel`
 // (`__fresnel_void`: a built-in's `output` arguments are written back as a user function's are).
 // The semantic stage inlines `__NAME_RESULT`
@@ -323,13 +323,19 @@ color __ctransform_color(string to; color c)
     return __ctransform_color("rgb", to, c);
 }
 
-// Geometry and matrices: `reflect`, `refract`, `ptlined`, `rotate` (of a point and of a matrix),
+// Geometry and matrices: `distance`, `reflect`, `refract`, `ptlined`, `rotate` (of a point and of a matrix),
 // `translate`, `scale`, `determinant` and `fresnel`. Each is written operation for operation as the interpreter computed
 // it natively before it moved here, so that its bits stay the same (docs/numerics.md: exact on
 // both backends): products and sums in the order written, sums left to right. `dot` is the
 // built-in, never the `.` operator (which the GPU backend hands to WGSL's `dot`, whose order of
 // summation is the driver's). Matrices are row by row (`m[i][j]`, row i, column j) in RenderMan's
 // row-vector convention, points transformed as `(p, 1) m`.
+
+// The distance between two points: the length of their difference.
+float __distance_float(point a, b)
+{
+    return length(a - b);
+}
 
 // The reflection of I about N: I - 2 (N . I) N, WGSL's `reflect` (RI spec 3.2 section 15.3).
 vector __reflect_vector(vector I; normal N)

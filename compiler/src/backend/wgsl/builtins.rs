@@ -204,12 +204,6 @@ impl Translator<'_> {
                 void(self)
             }
             B::Length => self.length(v(0)),
-            B::Distance if self.fast() => self.math2(M::Distance, v(0), v(1)),
-            B::Distance => {
-                let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
-                let d = self.zip_parts(Op::Subtract, &a, &b);
-                self.length_parts(&d)
-            }
             B::Normalize => self.normalize(v(0)),
             B::Dot if self.fast() && types[0].base.components() > 1 => self.math2(M::Dot, v(0), v(1)),
             B::Dot => {
@@ -314,7 +308,8 @@ impl Translator<'_> {
             | B::Determinant
             | B::Fresnel
             | B::Reflect
-            | B::Refract => {
+            | B::Refract
+            | B::Distance => {
                 return Err(super::internal(
                     span,
                     format!(

@@ -153,11 +153,6 @@ impl Translator<'_> {
         self.math1(M::Sqrt, d)
     }
 
-    /// Componentwise `a op b`.
-    pub(super) fn zip_parts(&mut self, op: Op, a: &[Value], b: &[Value]) -> Vec<Value> {
-        a.iter().zip(b).map(|(x, y)| self.binary(op, *x, *y)).collect()
-    }
-
     /// A float as an `i32` (WGSL's clamping conversion, which the interpreter's also is).
     pub(super) fn float_to_int(&mut self, x: Value) -> Value {
         self.fb.add(Expression::As { expr: x, kind: ScalarKind::Sint, convert: Some(4) })

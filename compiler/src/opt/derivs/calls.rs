@@ -77,7 +77,6 @@ pub(super) fn rule(b: &Builtin) -> Rule {
         | B::SmoothStep
         | B::Length
         | B::Normalize
-        | B::Distance
         | B::Depth
         | B::Rgb
         | B::Clamp01
@@ -130,7 +129,8 @@ pub(super) fn rule(b: &Builtin) -> Rule {
         | B::Determinant
         | B::Fresnel
         | B::Reflect
-        | B::Refract => Rule::Library,
+        | B::Refract
+        | B::Distance => Rule::Library,
     }
 }
 
@@ -375,7 +375,6 @@ impl Diff<'_> {
             (B::Transform | B::VTransform | B::NTransform, _) => self.d_transform(b, a, axis),
             (B::Length, _) => self.d_length(e, a, axis),
             (B::Normalize, _) => self.d_normalize(e, a, axis),
-            (B::Distance, _) => self.d_distance(e, a, axis),
             (B::FaceForward, _) => self.d_faceforward(e, a, axis),
             (B::Depth, _) => self.d_depth(e, a, axis),
             (B::Invert, _) => self.d_invert(e, a, axis),
@@ -431,7 +430,8 @@ impl Diff<'_> {
                 | B::Determinant
                 | B::Fresnel
                 | B::Reflect
-                | B::Refract,
+                | B::Refract
+                | B::Distance,
                 _,
             ) => None,
         }

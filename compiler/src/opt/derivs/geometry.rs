@@ -43,20 +43,6 @@ impl Diff<'_> {
         Some(self.guard(nonzero, q))
     }
 
-    /// The derivative of `distance` (`e` the call, `a` its arguments).
-    pub(super) fn d_distance(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
-        let (dp, dq) = (self.d(a[0], axis), self.d(a[1], axis));
-        let dd = self.sub(dp, dq)?;
-        let diff = self.shared(e, 0, |s| {
-            let (p, q) = (s.prim(a[0]), s.prim(a[1]));
-            s.op(BinaryOp::Sub, p, q)
-        });
-        let dot = self.op(BinaryOp::Dot, diff, dd);
-        let q = self.div(dot, e);
-        let nonzero = self.shared(e, 1, |s| s.positive(e));
-        Some(self.guard(nonzero, q))
-    }
-
     /// The derivative of `faceforward` (`e` the call, `a` its arguments).
     pub(super) fn d_faceforward(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
         // The result is N or -N: the derivative of N with the sign that was chosen.

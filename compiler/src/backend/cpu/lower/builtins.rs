@@ -187,10 +187,6 @@ impl Lower<'_> {
             }
             B::Comp | B::SetComp => self.component(b.id, args, &vals, span)?,
             B::Length => Val::Float(vec![self.length(f(0))]),
-            B::Distance => {
-                let d = self.zip(Binary::Sub, f(0), f(1));
-                Val::Float(vec![self.length(&d)])
-            }
             B::Normalize => Val::Float(self.normalize(f(0))),
             B::Dot => Val::Float(vec![self.dot(f(0), f(1))]),
             B::Cross => Val::Float(self.cross(f(0), f(1))),
@@ -247,7 +243,8 @@ impl Lower<'_> {
             | B::Determinant
             | B::Fresnel
             | B::Reflect
-            | B::Refract => {
+            | B::Refract
+            | B::Distance => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
                     format!("`{}` reached the interpreter as a built-in", b.id),

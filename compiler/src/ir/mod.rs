@@ -406,6 +406,30 @@ impl Shader {
         }
     }
 
+    /// Whether `place` is a per-light variable or an element of one.
+    pub fn place_perlight(&self, mut place: &Place) -> bool {
+        loop {
+            match place {
+                Place::Local(l) => return self.local(*l).rate.perlight,
+                Place::Global(g) => return g.perlight,
+                Place::Index(inner, _) => place = inner,
+            }
+        }
+    }
+
+    /// Whether a statement computes a per-light value itself (Stanford style): it stores into or
+    /// a per-light value, or decides on one (its nested statements aside).
+    pub fn computes_perlight(&self, stmt: &Stmt) -> bool {
+        let perlight = |id: &ExprId| self.expr(*id).rate.perlight;
+        match stmt {
+            Stmt::Store { place, value, .. } => self.place_perlight(place) || perlight(value),
+            Stmt::Eval(id) => perlight(id),
+            Stmt::If { cond, .. } => perlight(cond),
+            Stmt::Loop { cond, .. } => cond.as_ref().is_some_and(perlight),
+            _ => false,
+        }
+    }
+
     /// The rate an expression of this kind has in this shader, from its operands' rates, by the
     /// rules of `sema::rates` (for builders of new expressions, `opt::build`, and for `verify` to
     /// check the rates pass).

@@ -85,7 +85,7 @@ impl Unroll<'_> {
     }
 
     fn statement(&mut self, stmt: Stmt, in_light: bool, out: &mut Block) {
-        if !in_light && self.is_perlight(&stmt) {
+        if !in_light && self.shader.computes_perlight(&stmt) {
             // Stanford per-light computation: once per bound light.
             let body = self.block(vec![stmt], true);
             let lights = (0..self.lights.len() as u32).collect();
@@ -186,27 +186,6 @@ impl Unroll<'_> {
         let bound = b.binary(BinaryOp::Mul, cos, lengths);
         let cond = b.binary(BinaryOp::Ge, along, bound);
         Stmt::If { cond, then: body, otherwise: Vec::new() }
-    }
-
-    /// Whether a statement computes a per-light value: it stores into or a per-light value, or
-    /// decides on one.
-    fn is_perlight(&self, stmt: &Stmt) -> bool {
-        let s = &*self.shader;
-        let perlight = |id: &ExprId| s.expr(*id).rate.perlight;
-        let place_perlight = |mut p: &Place| loop {
-            match p {
-                Place::Local(l) => return s.local(*l).rate.perlight,
-                Place::Global(g) => return g.perlight,
-                Place::Index(inner, _) => p = inner,
-            }
-        };
-        match stmt {
-            Stmt::Store { place, value, .. } => place_perlight(place) || perlight(value),
-            Stmt::Eval(id) => perlight(id),
-            Stmt::If { cond, .. } => perlight(cond),
-            Stmt::Loop { cond, .. } => cond.as_ref().is_some_and(perlight),
-            _ => false,
-        }
     }
 }
 

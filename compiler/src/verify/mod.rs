@@ -1078,13 +1078,7 @@ impl Verifier<'_> {
                     Stmt::Lights { .. } => continue,
                     _ => {}
                 }
-                let mut roots = Vec::new();
-                statement_roots(stmt, &mut roots);
-                let stored = match stmt {
-                    Stmt::Store { place, .. } => place_perlight(s, place),
-                    _ => false,
-                };
-                if stored || roots.iter().any(|r| s.expr(*r).rate.perlight) {
+                if s.computes_perlight(stmt) {
                     out.push("a per-light statement outside a light loop".into());
                 }
                 stmt.for_each_block(|b| walk(s, b, out));
@@ -1158,17 +1152,6 @@ fn root_of(place: &Place) -> &Place {
     match place {
         Place::Index(inner, _) => root_of(inner),
         other => other,
-    }
-}
-
-/// Whether `place` is a per-light variable (or an element of one).
-fn place_perlight(s: &Shader, mut place: &Place) -> bool {
-    loop {
-        match place {
-            Place::Local(l) => return s.local(*l).rate.perlight,
-            Place::Global(g) => return g.perlight,
-            Place::Index(inner, _) => place = inner,
-        }
     }
 }
 

@@ -1,5 +1,5 @@
-//! Statements: stores (through run-time indices too), structured control flow, and the light
-//! constructs, unrolled over the binding's lights.
+//! Statements: stores (through run-time indices too), structured control flow, and light loops
+//! (`Stmt::Lights`, which `opt::lights` made of the light constructs), run once per listed light.
 
 use super::{Lower, Val};
 use crate::backend::cpu::code::{IntBinary, Node, Reg};

@@ -203,6 +203,22 @@ int perlin_pnext(int c0; float P)
     return c0 + 1 == int(P) ? 0 : c0 + 1;
 }
 
+// ImprovedNoise.noise's blend of a cell's 8 corners at the fraction (x, y, z): the gradient
+// picked by each corner's hash (h000 at the lower corner, h100 one step along x, ...) dotted with
+// the offset from that corner, blended with the fades of x, y and z.
+// sweep: x in [0, 1]; y in [0, 1]; z in [0, 1]
+float perlin_corners(int h000, h100, h010, h110, h001, h101, h011, h111; float x, y, z)
+{
+    float u = perlin_fade(x), v = perlin_fade(y), w = perlin_fade(z);
+    return perlin_lerp(w,
+        perlin_lerp(v,
+            perlin_lerp(u, perlin_grad(h000, x, y, z), perlin_grad(h100, x - 1, y, z)),
+            perlin_lerp(u, perlin_grad(h010, x, y - 1, z), perlin_grad(h110, x - 1, y - 1, z))),
+        perlin_lerp(v,
+            perlin_lerp(u, perlin_grad(h001, x, y, z - 1), perlin_grad(h101, x - 1, y, z - 1)),
+            perlin_lerp(u, perlin_grad(h011, x, y - 1, z - 1), perlin_grad(h111, x - 1, y - 1, z - 1))));
+}
+
 // Improved noise in the unit cell with corner indices (X0, Y0, Z0) and (X1, Y1, Z1) (only their
 // values modulo 256 matter) at the fraction (x, y, z) in [0, 1]^3: ImprovedNoise.noise's hash and
 // blend, operation for operation, with the cell's upper corners given instead of X + 1 (the same
@@ -211,22 +227,12 @@ int perlin_pnext(int c0; float P)
 float perlin_improved_lattice(int X0, X1, Y0, Y1, Z0, Z1; float x, y, z)
 {
     constant int perlin_p[256] = PATINA_PERLIN_PERMUTATION;
-    float u = perlin_fade(x), v = perlin_fade(y), w = perlin_fade(z);
     // Hash the 8 corners of the cell (the reference's A + 1 is A1, AA + 1 is AA + Z1).
     int A = PERLIN_P(X0), B = PERLIN_P(X1);
     int AA = PERLIN_P(A + Y0), AB = PERLIN_P(A + Y1), BA = PERLIN_P(B + Y0), BB = PERLIN_P(B + Y1);
-    // Blend the 8 corners' contributions.
-    return perlin_lerp(w,
-        perlin_lerp(v,
-            perlin_lerp(u, perlin_grad(PERLIN_P(AA + Z0), x, y, z),
-                           perlin_grad(PERLIN_P(BA + Z0), x - 1, y, z)),
-            perlin_lerp(u, perlin_grad(PERLIN_P(AB + Z0), x, y - 1, z),
-                           perlin_grad(PERLIN_P(BB + Z0), x - 1, y - 1, z))),
-        perlin_lerp(v,
-            perlin_lerp(u, perlin_grad(PERLIN_P(AA + Z1), x, y, z - 1),
-                           perlin_grad(PERLIN_P(BA + Z1), x - 1, y, z - 1)),
-            perlin_lerp(u, perlin_grad(PERLIN_P(AB + Z1), x, y - 1, z - 1),
-                           perlin_grad(PERLIN_P(BB + Z1), x - 1, y - 1, z - 1))));
+    return perlin_corners(PERLIN_P(AA + Z0), PERLIN_P(BA + Z0), PERLIN_P(AB + Z0), PERLIN_P(BB + Z0),
+                          PERLIN_P(AA + Z1), PERLIN_P(BA + Z1), PERLIN_P(AB + Z1), PERLIN_P(BB + Z1),
+                          x, y, z);
 }
 
 // perlin_improved_lattice for the cell whose upper corners are (X + 1, Y + 1, Z + 1), the
@@ -236,19 +242,9 @@ float perlin_improved_lattice(int X0, X1, Y0, Y1, Z0, Z1; float x, y, z)
 float perlin_improved_cell(int X, Y, Z; float x, y, z)
 {
     constant int perlin_p2[256] = PATINA_PERLIN_PAIRS;
-    float u = perlin_fade(x), v = perlin_fade(y), w = perlin_fade(z);
     PERLIN_CORNER_PAIRS(X, Y, Z);
-    return perlin_lerp(w,
-        perlin_lerp(v,
-            perlin_lerp(u, perlin_grad(PERLIN_LO(hAA), x, y, z),
-                           perlin_grad(PERLIN_LO(hBA), x - 1, y, z)),
-            perlin_lerp(u, perlin_grad(PERLIN_LO(hAB), x, y - 1, z),
-                           perlin_grad(PERLIN_LO(hBB), x - 1, y - 1, z))),
-        perlin_lerp(v,
-            perlin_lerp(u, perlin_grad(PERLIN_HI(hAA), x, y, z - 1),
-                           perlin_grad(PERLIN_HI(hBA), x - 1, y, z - 1)),
-            perlin_lerp(u, perlin_grad(PERLIN_HI(hAB), x, y - 1, z - 1),
-                           perlin_grad(PERLIN_HI(hBB), x - 1, y - 1, z - 1))));
+    return perlin_corners(PERLIN_LO(hAA), PERLIN_LO(hBA), PERLIN_LO(hAB), PERLIN_LO(hBB),
+                          PERLIN_HI(hAA), PERLIN_HI(hBA), PERLIN_HI(hAB), PERLIN_HI(hBB), x, y, z);
 }
 
 // Perlin's improved noise at (x, y, z): ImprovedNoise.noise(x, y, z), operation for operation.

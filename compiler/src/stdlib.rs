@@ -46,6 +46,7 @@ pub const LIBRARY_BUILTINS: &[BuiltinId] = &[
     BuiltinId::Reflect,
     BuiltinId::Refract,
     BuiltinId::Distance,
+    BuiltinId::FaceForward,
 ];
 
 /// The colour spaces (docs/builtins.md), converted by `compiler/stdlib/builtins.sl` for

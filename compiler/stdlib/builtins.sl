@@ -1,7 +1,7 @@
 // The built-in functions written in the language: RenderMan's `noise`, `snoise`, `pnoise` and
 // `cellnoise` in every overload of docs/builtins.md, the light sums `diffuse`, `specular`,
 // `phong` and the one-light `specularbrdf`, `ctransform` and the colour casts, and the geometry
-// and matrix built-ins `distance`, `reflect`, `refract`, `ptlined`, `rotate`, `translate`, `scale`,
+// and matrix built-ins `faceforward`, `distance`, `reflect`, `refract`, `ptlined`, `rotate`, `translate`, `scale`,
 // `determinant` and `fresnel`
 // (`__fresnel_void`: a built-in's `output` arguments are written back as a user function's are).
 // The semantic stage inlines `__NAME_RESULT`
@@ -323,13 +323,36 @@ color __ctransform_color(string to; color c)
     return __ctransform_color("rgb", to, c);
 }
 
-// Geometry and matrices: `distance`, `reflect`, `refract`, `ptlined`, `rotate` (of a point and of a matrix),
+// Geometry and matrices: `faceforward`, `distance`, `reflect`, `refract`, `ptlined`, `rotate` (of a point and of a matrix),
 // `translate`, `scale`, `determinant` and `fresnel`. Each is written operation for operation as the interpreter computed
 // it natively before it moved here, so that its bits stay the same (docs/numerics.md: exact on
 // both backends): products and sums in the order written, sums left to right. `dot` is the
 // built-in, never the `.` operator (which the GPU backend hands to WGSL's `dot`, whose order of
 // summation is the driver's). Matrices are row by row (`m[i][j]`, row i, column j) in RenderMan's
 // row-vector convention, points transformed as `(p, 1) m`.
+
+// N turned to face against I: N where I and the reference normal Nref point opposite ways
+// (dot(I, Nref) < 0), else -N, WGSL's `faceForward`. The semantic stage passes the geometric normal
+// Ng as Nref to a two-argument call where the shader has one; elsewhere Nref is N itself.
+normal __faceforward_normal(normal N; vector I; normal Nref)
+{
+    return dot(I, Nref) < 0 ? N : -N;
+}
+
+normal __faceforward_normal(normal N; vector I)
+{
+    return __faceforward_normal(N, I, N);
+}
+
+vector __faceforward_vector(vector N; vector I; vector Nref)
+{
+    return dot(I, Nref) < 0 ? N : -N;
+}
+
+vector __faceforward_vector(vector N; vector I)
+{
+    return __faceforward_vector(N, I, N);
+}
 
 // The distance between two points: the length of their difference.
 float __distance_float(point a, b)

@@ -1,7 +1,10 @@
 //! The per-lane semantics of the CPU interpreter: WGSL's definitions wherever WGSL defines a result
 //! exactly, so that the interpreter and the GPU agree bit for bit on them. Floats are generic over
 //! [`Real`] (`f32` is the interpreter's normal mode, `f64` its ground-truth mode); integers are
-//! `i32`/`u32`. docs/numerics.md lists every choice made here and why.
+//! `i32`/`u32`. docs/numerics.md lists every choice made here and why. The fixed sequences (`clamp`,
+//! `smoothstep`, `sign`, ...) are `backend::arith`'s, run here on numbers ([`Numbers`]).
+
+use crate::backend::arith::Arith;
 
 /// The float types the interpreter evaluates in.
 pub trait Real:
@@ -182,7 +185,7 @@ pub fn rem<R: Real>(a: R, b: R) -> R {
 
 /// RenderMan's `mod`: `a - b * floor(a / b)`, whose result has the sign of `b`.
 pub fn modulo<R: Real>(a: R, b: R) -> R {
-    a - b * (a / b).floor()
+    Numbers::default().modulo(a, b)
 }
 
 /// WGSL `mix`: `a * (1 - t) + b * t`, two roundings and no fused multiply-add.
@@ -192,36 +195,102 @@ pub fn mix<R: Real>(a: R, b: R, t: R) -> R {
 
 /// WGSL `clamp`: `min(max(x, lo), hi)`.
 pub fn clamp<R: Real>(x: R, lo: R, hi: R) -> R {
-    x.max(lo).min(hi)
+    Numbers::default().clamp(x, lo, hi)
 }
 
 /// WGSL `step(edge, x)`: 1 when `x >= edge`, else 0 (RenderMan's `step(min, x)` has the same order).
 pub fn step<R: Real>(edge: R, x: R) -> R {
-    if x >= edge { R::ONE } else { R::ZERO }
+    Numbers::default().step(edge, x)
 }
 
 /// WGSL `smoothstep(lo, hi, x)`: `t * t * (3 - 2 * t)` with `t = clamp((x - lo) / (hi - lo), 0, 1)`.
 pub fn smoothstep<R: Real>(lo: R, hi: R, x: R) -> R {
-    let t = clamp((x - lo) / (hi - lo), R::ZERO, R::ONE);
-    t * t * (R::THREE - R::TWO * t)
+    Numbers::default().smoothstep(lo, hi, x)
 }
 
 /// WGSL `sign`: -1, 0 or 1 (0 keeps its sign; NaN gives 0).
 pub fn sign<R: Real>(x: R) -> R {
-    if x > R::ZERO {
-        R::ONE
-    } else if x < R::ZERO {
-        -R::ONE
-    } else if x.is_nan() {
-        R::ZERO
-    } else {
-        x
-    }
+    Numbers::default().sign(x)
 }
 
 /// WGSL `inverseSqrt`: `1 / sqrt(x)`.
 pub fn inverse_sqrt<R: Real>(x: R) -> R {
-    R::ONE / x.sqrt()
+    Numbers::default().inverse_sqrt(x)
+}
+
+/// [`Arith`] on numbers of one float type: the sequences of `backend::arith` run on values, as the
+/// interpreter's instructions for them do (the WGSL backend builds the same sequences).
+pub(crate) struct Numbers<R>(std::marker::PhantomData<R>);
+
+impl<R> Default for Numbers<R> {
+    fn default() -> Self {
+        Numbers(std::marker::PhantomData)
+    }
+}
+
+impl<R: Real> Arith for Numbers<R> {
+    type V = R;
+    type B = bool;
+    #[inline(always)]
+    fn constant(&mut self, x: f64) -> R {
+        R::from_f64(x)
+    }
+    #[inline(always)]
+    fn add(&mut self, a: R, b: R) -> R {
+        a + b
+    }
+    #[inline(always)]
+    fn sub(&mut self, a: R, b: R) -> R {
+        a - b
+    }
+    #[inline(always)]
+    fn mul(&mut self, a: R, b: R) -> R {
+        a * b
+    }
+    #[inline(always)]
+    fn div(&mut self, a: R, b: R) -> R {
+        a / b
+    }
+    #[inline(always)]
+    fn neg(&mut self, a: R) -> R {
+        -a
+    }
+    #[inline(always)]
+    fn sqrt(&mut self, a: R) -> R {
+        a.sqrt()
+    }
+    #[inline(always)]
+    fn floor(&mut self, a: R) -> R {
+        a.floor()
+    }
+    #[inline(always)]
+    fn min(&mut self, a: R, b: R) -> R {
+        a.min(b)
+    }
+    #[inline(always)]
+    fn max(&mut self, a: R, b: R) -> R {
+        a.max(b)
+    }
+    #[inline(always)]
+    fn less(&mut self, a: R, b: R) -> bool {
+        a < b
+    }
+    #[inline(always)]
+    fn greater(&mut self, a: R, b: R) -> bool {
+        a > b
+    }
+    #[inline(always)]
+    fn greater_equal(&mut self, a: R, b: R) -> bool {
+        a >= b
+    }
+    #[inline(always)]
+    fn is_nan(&mut self, a: R) -> bool {
+        a.is_nan()
+    }
+    #[inline(always)]
+    fn select(&mut self, c: bool, a: R, b: R) -> R {
+        if c { a } else { b }
+    }
 }
 
 /// The largest f32 below 2^31, the upper end of WGSL's float-to-`i32` clamp.

@@ -10,6 +10,7 @@
 //! `translate`, `scale` and `determinant` are the library's (`compiler/stdlib/builtins.sl`), and
 //! `spline` is arithmetic on its knots by then (`opt::splines`).
 
+use crate::backend::arith::{self, Arith};
 use crate::backend::ops::{CoreOp, core_op, not_core};
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
 
@@ -67,11 +68,7 @@ impl Translator<'_> {
             }
             // 1 / sqrt(x), as the interpreter (WGSL's inverseSqrt may differ by 2 ulp).
             B::InverseSqrt if self.fast() => self.math1(M::InverseSqrt, v(0)),
-            B::InverseSqrt => {
-                let one = self.float(1.0);
-                let root = self.math1(M::Sqrt, v(0));
-                self.div(one, root)
-            }
+            B::InverseSqrt => self.inverse_sqrt(v(0)),
             B::Log if args.len() == 2 => {
                 let (x, base) = (self.math1(M::Log, v(0)), self.math1(M::Log, v(1)));
                 self.binary(Op::Divide, x, base)
@@ -82,6 +79,7 @@ impl Translator<'_> {
                 self.modulo(v(0), b)
             }
             B::Abs if ret.base == Base::Uint => v(0),
+            B::Sign if self.fast() => self.math1(M::Sign, v(0)),
             B::Sign => self.sign(v(0)),
             // WGSL's `abs` is exact for signed integers too.
             B::Sin
@@ -113,12 +111,12 @@ impl Translator<'_> {
             B::Clamp => {
                 let (lo, hi) = (wide(self, 1), wide(self, 2));
                 // min(max(x, lo), hi), as the interpreter (WGSL's clamp leaves lo > hi open).
-                self.clamp_to(v(0), lo, hi)
+                self.clamp(v(0), lo, hi)
             }
             B::Clamp01 => {
                 let (zero, one) = (self.float(0.0), self.float(1.0));
                 let (zero, one) = (self.splat(zero, n), self.splat(one, n));
-                self.clamp_to(v(0), zero, one)
+                self.clamp(v(0), zero, one)
             }
             B::Mix => {
                 // a * (1 - t) + b * t, WGSL's formula.
@@ -130,11 +128,11 @@ impl Translator<'_> {
                 self.step(edge, v(1))
             }
             B::SmoothStep => self.smoothstep(v(0), v(1), v(2)),
-            B::FilterStep if args.len() == 3 => self.filterstep_explicit(v(0), v(1), v(2)),
+            B::FilterStep if args.len() == 3 => arith::filterstep(self, v(0), v(1), v(2)),
             B::Select => match types[1].base {
                 Base::Matrix3 if !types[1].is_array() => self.select_matrix(v(0), v(1), v(2), 3),
                 Base::Matrix4 if !types[1].is_array() => self.select_matrix(v(0), v(1), v(2), 4),
-                _ => self.pick(v(0), v(1), v(2)),
+                _ => self.select(v(0), v(1), v(2)),
             },
             B::Random | B::UniformRandom => {
                 // The interpreter's hash of the point index (a fixed one for a uniform value) and
@@ -196,7 +194,7 @@ impl Translator<'_> {
                     .map(|k| {
                         let kk = self.int(k);
                         let here = self.binary(Op::Equal, i, kk);
-                        self.pick(here, v(2), old[k as usize])
+                        self.select(here, v(2), old[k as usize])
                     })
                     .collect();
                 let new = self.vector(&parts);
@@ -209,36 +207,15 @@ impl Translator<'_> {
             B::Dot => {
                 let k = types[0].base.components();
                 let (a, b) = (self.parts(v(0), k), self.parts(v(1), k));
-                self.dot_parts(&a, &b)
+                arith::dot(self, &a, &b)
             }
             B::Cross if self.fast() => self.math2(M::Cross, v(0), v(1)),
             B::Cross => {
                 let (a, b) = (self.parts(v(0), 3), self.parts(v(1), 3));
-                let mut term = |i: usize, j: usize| {
-                    let p = self.mul(a[i], b[j]);
-                    let q = self.mul(a[j], b[i]);
-                    self.sub(p, q)
-                };
-                let c = [term(1, 2), term(2, 0), term(0, 1)];
+                let c = arith::cross(self, &a, &b);
                 self.vector(&c)
             }
             B::Rgb => self.xyz(v(0)),
-            B::FaceForward => {
-                let nref = match vals.get(2) {
-                    Some(r) => *r,
-                    None => self.global_value("Ng").unwrap_or(v(0)),
-                };
-                if self.fast() {
-                    return Ok(self.math3(M::FaceForward, v(0), v(1), nref));
-                }
-                // WGSL faceForward: n where dot(i, nref) < 0, else -n.
-                let (i, r) = (self.parts(v(1), 3), self.parts(nref, 3));
-                let d = self.dot_parts(&i, &r);
-                let zero = self.float(0.0);
-                let facing = self.binary(Op::Less, d, zero);
-                let neg = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: v(0) });
-                self.pick(facing, v(0), neg)
-            }
             B::LightSource => self.lightsource(args, span)?,
             B::Surface => self.surface_message(args, span)?,
             B::Transform | B::VTransform | B::NTransform => self.transform(b.id, args, &vals, ret, span)?,
@@ -251,7 +228,7 @@ impl Translator<'_> {
             B::Invert => {
                 let k = if types[0].base == Base::Matrix3 { 3 } else { 4 };
                 let m = self.entries(v(0), k);
-                let inv = self.invert_entries(&m, k as usize);
+                let inv = arith::invert(self, &m, k as usize);
                 self.matrix(&inv, k)
             }
             B::Depth => self.depth(v(0)),
@@ -309,7 +286,8 @@ impl Translator<'_> {
             | B::Fresnel
             | B::Reflect
             | B::Refract
-            | B::Distance => {
+            | B::Distance
+            | B::FaceForward => {
                 return Err(super::internal(
                     span,
                     format!(
@@ -355,7 +333,7 @@ impl Translator<'_> {
             return self.math1(M::Length, v);
         }
         let p = self.parts(v, 3);
-        self.length_parts(&p)
+        arith::length(self, &p)
     }
 
     /// `v / length(v)` of a three-component vector (a zero vector gives NaN, as in WGSL).
@@ -364,63 +342,9 @@ impl Translator<'_> {
             return self.math1(M::Normalize, v);
         }
         let p = self.parts(v, 3);
-        let len = self.length_parts(&p);
+        let len = arith::length(self, &p);
         let len = self.splat(len, 3);
         self.div(v, len)
-    }
-
-    /// `x >= edge ? 1 : 0`, the interpreter's `step` (WGSL's `step` is 1 for a NaN `x` on some
-    /// devices, where the comparison is false).
-    fn step(&mut self, edge: Value, x: Value) -> Value {
-        let (zero, one) = (self.float(0.0), self.float(1.0));
-        let above = self.binary(Op::GreaterEqual, x, edge);
-        self.pick(above, one, zero)
-    }
-
-    /// The interpreter's `sign`: 1, -1, 0 for NaN, or `x` itself for zeros (keeping the sign of
-    /// zero). NaN is found from the bits: comparisons with NaN are not reliable on every device.
-    fn sign(&mut self, x: Value) -> Value {
-        if self.fast() {
-            return self.math1(M::Sign, x);
-        }
-        let (zero, one, minus_one) = (self.float(0.0), self.float(1.0), self.float(-1.0));
-        let bits = self.fb.add(Expression::As { expr: x, kind: ScalarKind::Uint, convert: None });
-        let magnitude = self.fb.add(Expression::Literal(naga::Literal::U32(0x7fff_ffff)));
-        let magnitude = self.binary(Op::And, bits, magnitude);
-        let inf = self.fb.add(Expression::Literal(naga::Literal::U32(0x7f80_0000)));
-        let nan = self.binary(Op::Greater, magnitude, inf);
-        let r = self.pick(nan, zero, x);
-        let below = self.binary(Op::Less, x, zero);
-        let r = self.pick(below, minus_one, r);
-        let above = self.binary(Op::Greater, x, zero);
-        self.pick(above, one, r)
-    }
-
-    /// `t * t * (3 - 2 * t)` with `t = clamp((x - lo) / (hi - lo), 0, 1)`: WGSL's formula, written
-    /// out in the interpreter's order.
-    fn smoothstep(&mut self, lo: Value, hi: Value, x: Value) -> Value {
-        let num = self.sub(x, lo);
-        let den = self.sub(hi, lo);
-        let t = self.div(num, den);
-        let (zero, one, two, three) = (self.float(0.0), self.float(1.0), self.float(2.0), self.float(3.0));
-        let t = self.clamp_to(t, zero, one);
-        let tt = self.mul(t, t);
-        let t2 = self.mul(two, t);
-        let r = self.sub(three, t2);
-        self.mul(tt, r)
-    }
-
-    /// The 3-argument `filterstep(edge, x0, x1)`.
-    fn filterstep_explicit(&mut self, edge: Value, x0: Value, x1: Value) -> Value {
-        let w = self.binary(Op::Subtract, x1, x0);
-        let above = self.binary(Op::Subtract, x1, edge);
-        let t = self.binary(Op::Divide, above, w);
-        let (zero, one) = (self.float(0.0), self.float(1.0));
-        let t = self.math2(M::Max, t, zero);
-        let t = self.math2(M::Min, t, one);
-        let step = self.step(edge, x0);
-        let wide = self.binary(Op::Greater, w, zero);
-        self.fb.add(Expression::Select { condition: wide, accept: t, reject: step })
     }
 
     /// Whether the value of `id` is never below zero (it may be NaN or -0, which `pow`'s
@@ -462,14 +386,14 @@ impl Translator<'_> {
         let integral = self.binary(Op::Equal, y, whole);
         let take = self.binary(Op::And, negative, integral);
         let ax = self.math1(M::Abs, x);
-        let base = self.pick(take, ax, x);
+        let base = self.select(take, ax, x);
         let power = self.math2(M::Pow, base, y);
         let halved = self.binary(Op::Multiply, y, half);
         let halved_whole = self.math1(M::Trunc, halved);
         let odd = self.binary(Op::NotEqual, halved, halved_whole);
         let flip = self.binary(Op::And, take, odd);
         let flipped = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: power });
-        self.pick(flip, flipped, power)
+        self.select(flip, flipped, power)
     }
 
     /// `lightsource(name, v)` inside `illuminance`, visiting light `self.light`: as the

@@ -8,8 +8,8 @@ use naga::{BinaryOperator as Op, Expression, SwizzleComponent as C, VectorSize};
 
 use super::body::{Translator, Value};
 use super::interface::UniformSource;
-use super::matrices::Rule;
 use crate::backend::CLIP_INPUT;
+use crate::backend::arith::{self, Arith, Rule};
 use crate::diag::{Code, Diagnostic};
 use crate::ir::types::{Base, Type};
 use crate::ir::{ExprId, ExprKind};
@@ -52,11 +52,11 @@ impl Translator<'_> {
         let (to_m, from_m) = self.space_entries(space);
         if ty.base == Base::Matrix4 {
             let value = self.entries(v, 4);
-            let product = self.product(&value, &from_m, 4);
+            let product = arith::product(self, &value, &from_m, 4);
             return self.matrix(&product, 4);
         }
         let value = self.parts(v, 3);
-        let out = self.apply(&value, Rule::of(ty.base), &from_m, &to_m);
+        let out = arith::apply(self, &value, Rule::of(ty.base), &from_m, &to_m);
         self.vector(&out)
     }
 
@@ -104,28 +104,28 @@ impl Translator<'_> {
             2 if is_string(self, 0) => {
                 let to = self.space_name(args[0], span)?;
                 let (to_m, from_m) = self.space_entries(&to);
-                self.apply(&value, rule, &to_m, &from_m)
+                arith::apply(self, &value, rule, &to_m, &from_m)
             }
             3 if is_string(self, 1) => {
                 let from = self.space_name(args[0], span)?;
                 let to = self.space_name(args[1], span)?;
                 let (to_from, from_from) = self.space_entries(&from);
-                let current = self.apply(&value, rule, &from_from, &to_from);
+                let current = arith::apply(self, &value, rule, &from_from, &to_from);
                 let (to_m, from_m) = self.space_entries(&to);
-                self.apply(&current, rule, &to_m, &from_m)
+                arith::apply(self, &current, rule, &to_m, &from_m)
             }
             3 => {
                 let from = self.space_name(args[0], span)?;
                 let (to_from, from_from) = self.space_entries(&from);
-                let current = self.apply(&value, rule, &from_from, &to_from);
+                let current = arith::apply(self, &value, rule, &from_from, &to_from);
                 let m = self.entries(vals[1], 4);
-                let inv = if rule == Rule::Normal { self.invert_entries(&m, 4) } else { m.clone() };
-                self.apply(&current, rule, &m, &inv)
+                let inv = if rule == Rule::Normal { arith::invert(self, &m, 4) } else { m.clone() };
+                arith::apply(self, &current, rule, &m, &inv)
             }
             _ => {
                 let m = self.entries(vals[0], 4);
-                let inv = if rule == Rule::Normal { self.invert_entries(&m, 4) } else { m.clone() };
-                self.apply(&value, rule, &m, &inv)
+                let inv = if rule == Rule::Normal { arith::invert(self, &m, 4) } else { m.clone() };
+                arith::apply(self, &value, rule, &m, &inv)
             }
         };
         Ok(self.vector(&out))
@@ -221,7 +221,7 @@ impl Translator<'_> {
         let range = self.sub(far, near);
         let (zero, one) = (self.float(0.0), self.float(1.0));
         let empty = self.binary(Op::Equal, range, zero);
-        let range = self.pick(empty, one, range);
+        let range = self.select(empty, one, range);
         let from_near = self.sub(z, near);
         self.div(from_near, range)
     }

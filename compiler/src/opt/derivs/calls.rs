@@ -41,7 +41,7 @@ pub(super) enum Rule {
 pub(super) enum Through {
     /// Every argument.
     All,
-    /// The first (the value of `xcomp`, `comp`, `faceforward`).
+    /// The first (the value of `xcomp`, `comp`).
     First,
     /// The last (the value a transform moves; its space or matrix is taken as constant).
     Last,
@@ -86,7 +86,7 @@ pub(super) fn rule(b: &Builtin) -> Rule {
         | B::Transpose
         | B::Affine
         | B::Invert => Rule::Chain(All),
-        B::XComp | B::YComp | B::ZComp | B::Comp | B::FaceForward => Rule::Chain(First),
+        B::XComp | B::YComp | B::ZComp | B::Comp => Rule::Chain(First),
         B::Transform | B::VTransform | B::NTransform => Rule::Chain(Last),
         B::Select => Rule::Chain(AfterFirst),
         B::Spline => Rule::Chain(Knots),
@@ -130,7 +130,8 @@ pub(super) fn rule(b: &Builtin) -> Rule {
         | B::Fresnel
         | B::Reflect
         | B::Refract
-        | B::Distance => Rule::Library,
+        | B::Distance
+        | B::FaceForward => Rule::Library,
     }
 }
 
@@ -375,7 +376,6 @@ impl Diff<'_> {
             (B::Transform | B::VTransform | B::NTransform, _) => self.d_transform(b, a, axis),
             (B::Length, _) => self.d_length(e, a, axis),
             (B::Normalize, _) => self.d_normalize(e, a, axis),
-            (B::FaceForward, _) => self.d_faceforward(e, a, axis),
             (B::Depth, _) => self.d_depth(e, a, axis),
             (B::Invert, _) => self.d_invert(e, a, axis),
             // No chain rule: their rule gives them no operands, so no call of them is active.
@@ -431,7 +431,8 @@ impl Diff<'_> {
                 | B::Fresnel
                 | B::Reflect
                 | B::Refract
-                | B::Distance,
+                | B::Distance
+                | B::FaceForward,
                 _,
             ) => None,
         }

@@ -43,18 +43,6 @@ impl Diff<'_> {
         Some(self.guard(nonzero, q))
     }
 
-    /// The derivative of `faceforward` (`e` the call, `a` its arguments).
-    pub(super) fn d_faceforward(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
-        // The result is N or -N: the derivative of N with the sign that was chosen.
-        let dn = self.d(a[0], axis)?;
-        let kept = self.shared(e, 0, |s| {
-            let (dot, zero) = (s.op(BinaryOp::Dot, e, a[0]), s.lit(0.0));
-            s.op(BinaryOp::Ge, dot, zero)
-        });
-        let flipped = self.b.neg(dn);
-        Some(self.b.select(kept, dn, flipped))
-    }
-
     /// The derivative of `depth` (`e` the call, `a` its arguments).
     pub(super) fn d_depth(&mut self, e: ExprId, a: &[ExprId], axis: Axis) -> Option<ExprId> {
         // depth is affine in the point: depth(p + dp) - depth(p) = depth(dp) - depth(0).

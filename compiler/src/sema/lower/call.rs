@@ -309,7 +309,9 @@ impl Lowerer<'_> {
                     }
                 }
                 // `faceforward(N, I)` compares with the geometric normal: make that argument
-                // explicit, so that rates, derivatives and every backend see it.
+                // explicit, so that rates, derivatives and the library's code see it (where the
+                // shader has no `Ng`, the library's two-argument form compares with N itself).
+                let mut b = b;
                 if b.id == BuiltinId::FaceForward
                     && converted.len() == 2
                     && let Some(ng) = crate::sema::globals::lookup("Ng", self.kind, self.stanford)
@@ -319,7 +321,7 @@ impl Lowerer<'_> {
                     let types = [b.ret, Type::of(crate::ir::types::Base::Vector), b.ret];
                     if let Some(three) = crate::sema::builtins::find(BuiltinId::FaceForward, &types) {
                         converted.push(ng_expr);
-                        return Some(self.push_expr(ExprKind::Builtin(three, converted), three.ret, span));
+                        b = three;
                     }
                 }
                 if crate::stdlib::LIBRARY_BUILTINS.contains(&b.id) {

@@ -3,6 +3,7 @@
 
 use super::expr::pick;
 use super::{Lower, Val};
+use crate::backend::arith;
 use crate::backend::cpu::code::{Binary, Compare, IntBinary, IntUnary, PrintArg, Reg, Ternary, Unary};
 use crate::backend::ops::{CoreOp, core_op, not_core};
 use crate::backend::{POINT_INDEX, UNIFORM_RANDOM_POINT};
@@ -126,7 +127,9 @@ impl Lower<'_> {
             B::Mix => self.each3(Ternary::Mix, f(0), f(1), f(2)),
             B::Step => Val::Float(self.zip(Binary::Step, f(0), f(1))),
             B::SmoothStep => self.each3(Ternary::Smoothstep, f(0), f(1), f(2)),
-            B::FilterStep if args.len() == 3 => self.filterstep_explicit(f(0)[0], f(1)[0], f(2)[0]),
+            B::FilterStep if args.len() == 3 => {
+                Val::Float(vec![arith::filterstep(&mut self.emit, f(0)[0], f(1)[0], f(2)[0])])
+            }
             B::Select => {
                 let c = self.truth(&vals[0]);
                 self.select(c, &vals[1], &vals[2])
@@ -186,26 +189,11 @@ impl Lower<'_> {
                 Val::Void
             }
             B::Comp | B::SetComp => self.component(b.id, args, &vals, span)?,
-            B::Length => Val::Float(vec![self.length(f(0))]),
-            B::Normalize => Val::Float(self.normalize(f(0))),
-            B::Dot => Val::Float(vec![self.dot(f(0), f(1))]),
-            B::Cross => Val::Float(self.cross(f(0), f(1))),
+            B::Length => Val::Float(vec![arith::length(&mut self.emit, f(0))]),
+            B::Normalize => Val::Float(arith::normalize(&mut self.emit, f(0))),
+            B::Dot => Val::Float(vec![arith::dot(&mut self.emit, f(0), f(1))]),
+            B::Cross => Val::Float(arith::cross(&mut self.emit, f(0), f(1)).to_vec()),
             B::Rgb => Val::Float(f(0)[..3].to_vec()),
-            B::FaceForward => {
-                let nref = match vals.get(2) {
-                    Some(v) => v.floats().to_vec(),
-                    None => {
-                        let ng = self.global_named("Ng");
-                        if ng.floats().is_empty() { f(0).to_vec() } else { ng.floats().to_vec() }
-                    }
-                };
-                // WGSL faceForward: n where dot(i, nref) < 0, else -n.
-                let d = self.dot(f(1), &nref);
-                let zero = self.emit.float(0.0);
-                let facing = self.emit.compare(Compare::Lt, d, zero);
-                let neg = self.each(Unary::Neg, f(0));
-                self.select(facing, &vals[0], &neg)
-            }
             B::LightSource => self.lightsource(&vals[0], args[1], span)?,
             B::Surface => self.surface_message(&vals[0], &vals[1], args[1], span)?,
             B::Concat => Val::Str(
@@ -244,7 +232,8 @@ impl Lower<'_> {
             | B::Fresnel
             | B::Reflect
             | B::Refract
-            | B::Distance => {
+            | B::Distance
+            | B::FaceForward => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
                     format!("`{}` reached the interpreter as a built-in", b.id),
@@ -425,31 +414,6 @@ impl Lower<'_> {
     fn scale(&mut self, a: &[Reg], k: f64) -> Val {
         let k = self.emit.float(k);
         Val::Float(self.zip(Binary::Mul, a, &[k]))
-    }
-
-    /// `sqrt(v . v)`.
-    pub(crate) fn length(&mut self, v: &[Reg]) -> Reg {
-        let d = self.dot(v, v);
-        self.emit.unary(Unary::Sqrt, d)
-    }
-
-    /// `v / length(v)` (a zero vector gives NaN, as in WGSL; the stdlib guards where it matters).
-    pub(crate) fn normalize(&mut self, v: &[Reg]) -> Vec<Reg> {
-        let len = self.length(v);
-        v.iter().map(|x| self.emit.binary(Binary::Div, *x, len)).collect()
-    }
-
-    /// The 3-argument `filterstep(edge, x0, x1)`: the fraction of [x0, x1] at or above `edge`
-    /// (a plain step at x0 when the interval is empty).
-    fn filterstep_explicit(&mut self, edge: Reg, x0: Reg, x1: Reg) -> Val {
-        let w = self.emit.binary(Binary::Sub, x1, x0);
-        let above = self.emit.binary(Binary::Sub, x1, edge);
-        let t = self.emit.binary(Binary::Div, above, w);
-        let (zero, one) = (self.emit.float(0.0), self.emit.float(1.0));
-        let t = self.emit.ternary(Ternary::Clamp, t, zero, one);
-        let step = self.emit.binary(Binary::Step, edge, x0);
-        let wide = self.emit.compare(Compare::Gt, w, zero);
-        Val::Float(vec![self.emit.select(true, wide, t, step)])
     }
 
     /// The number of the texture a name or `texref` argument denotes (a string's value, or the

@@ -2,6 +2,7 @@
 //! exactly when every operand is uniform. Everything above it (expressions, built-ins) composes
 //! these scalar operations.
 
+use crate::backend::arith::Arith;
 use crate::backend::cpu::code::{
     Binary, Compare, Convert, Files, Inst, IntBinary, IntUnary, Node, Reg, Ternary, Unary,
 };
@@ -399,5 +400,76 @@ fn relocate_inst(inst: &mut Inst, f: &Files) {
                 }
             }
         }
+    }
+}
+
+/// The sequences of `backend::arith` as instructions. Those the interpreter has one instruction for
+/// (`clamp`, `step`, `smoothstep`, `mod`, `sign`, `inversesqrt`) are that instruction, which runs
+/// the same sequence on numbers (`scalar::Numbers`).
+impl Arith for Emitter {
+    type V = Reg;
+    type B = Reg;
+    fn constant(&mut self, x: f64) -> Reg {
+        self.float(x)
+    }
+    fn add(&mut self, a: Reg, b: Reg) -> Reg {
+        self.binary(Binary::Add, a, b)
+    }
+    fn sub(&mut self, a: Reg, b: Reg) -> Reg {
+        self.binary(Binary::Sub, a, b)
+    }
+    fn mul(&mut self, a: Reg, b: Reg) -> Reg {
+        self.binary(Binary::Mul, a, b)
+    }
+    fn div(&mut self, a: Reg, b: Reg) -> Reg {
+        self.binary(Binary::Div, a, b)
+    }
+    fn neg(&mut self, a: Reg) -> Reg {
+        self.unary(Unary::Neg, a)
+    }
+    fn sqrt(&mut self, a: Reg) -> Reg {
+        self.unary(Unary::Sqrt, a)
+    }
+    fn floor(&mut self, a: Reg) -> Reg {
+        self.unary(Unary::Floor, a)
+    }
+    fn min(&mut self, a: Reg, b: Reg) -> Reg {
+        self.binary(Binary::Min, a, b)
+    }
+    fn max(&mut self, a: Reg, b: Reg) -> Reg {
+        self.binary(Binary::Max, a, b)
+    }
+    fn less(&mut self, a: Reg, b: Reg) -> Reg {
+        self.compare(Compare::Lt, a, b)
+    }
+    fn greater(&mut self, a: Reg, b: Reg) -> Reg {
+        self.compare(Compare::Gt, a, b)
+    }
+    fn greater_equal(&mut self, a: Reg, b: Reg) -> Reg {
+        self.compare(Compare::Ge, a, b)
+    }
+    fn is_nan(&mut self, a: Reg) -> Reg {
+        self.compare(Compare::Ne, a, a)
+    }
+    fn select(&mut self, c: Reg, a: Reg, b: Reg) -> Reg {
+        Emitter::select(self, true, c, a, b)
+    }
+    fn clamp(&mut self, x: Reg, lo: Reg, hi: Reg) -> Reg {
+        self.ternary(Ternary::Clamp, x, lo, hi)
+    }
+    fn step(&mut self, edge: Reg, x: Reg) -> Reg {
+        self.binary(Binary::Step, edge, x)
+    }
+    fn smoothstep(&mut self, lo: Reg, hi: Reg, x: Reg) -> Reg {
+        self.ternary(Ternary::Smoothstep, lo, hi, x)
+    }
+    fn modulo(&mut self, a: Reg, b: Reg) -> Reg {
+        self.binary(Binary::Mod, a, b)
+    }
+    fn sign(&mut self, x: Reg) -> Reg {
+        self.unary(Unary::Sign, x)
+    }
+    fn inverse_sqrt(&mut self, x: Reg) -> Reg {
+        self.unary(Unary::InverseSqrt, x)
     }
 }

@@ -2,6 +2,7 @@
 
 use super::stmt::Access;
 use super::{Lower, Val};
+use crate::backend::arith;
 use crate::backend::cpu::code::{Binary, Compare, Convert, IntBinary, IntUnary, Reg, Unary};
 use crate::diag::Diagnostic;
 use crate::ir::types::{Base, Type};
@@ -141,7 +142,8 @@ impl Lower<'_> {
                 };
                 if op == Binary::Div && is_matrix(tb) {
                     // RenderMan: a / M = a * inverse(M).
-                    let inv = self.invert(b.floats(), tb.base);
+                    let n = if tb.base == Base::Matrix3 { 3 } else { 4 };
+                    let inv = arith::invert(&mut self.emit, b.floats(), n);
                     return self.mat_mul(a.floats(), ta, &inv, tb);
                 }
                 Val::Float(self.zip(op, a.floats(), b.floats()))
@@ -182,8 +184,8 @@ impl Lower<'_> {
                 let n = a.len().max(b.len());
                 Val::Int((0..n).map(|i| self.emit.int_binary(op, pick(a, i), pick(b, i))).collect())
             }
-            B::Dot => Val::Float(vec![self.dot(a.floats(), b.floats())]),
-            B::Cross => Val::Float(self.cross(a.floats(), b.floats())),
+            B::Dot => Val::Float(vec![arith::dot(&mut self.emit, a.floats(), b.floats())]),
+            B::Cross => Val::Float(arith::cross(&mut self.emit, a.floats(), b.floats()).to_vec()),
             B::Eq | B::Ne | B::Lt | B::Le | B::Gt | B::Ge => self.comparison(op, a, b, signed),
             B::And | B::Or => {
                 let (x, y) = (self.truth(a), self.truth(b));
@@ -233,26 +235,6 @@ impl Lower<'_> {
         (0..n).map(|i| self.emit.binary(op, pick(a, i), pick(b, i))).collect()
     }
 
-    /// `a . b`.
-    pub(crate) fn dot(&mut self, a: &[Reg], b: &[Reg]) -> Reg {
-        let mut sum = self.emit.binary(Binary::Mul, a[0], b[0]);
-        for i in 1..a.len().min(b.len()) {
-            let p = self.emit.binary(Binary::Mul, a[i], b[i]);
-            sum = self.emit.binary(Binary::Add, sum, p);
-        }
-        sum
-    }
-
-    /// `a ^ b` of three-component vectors.
-    pub(crate) fn cross(&mut self, a: &[Reg], b: &[Reg]) -> Vec<Reg> {
-        let mut term = |i: usize, j: usize| {
-            let p = self.emit.binary(Binary::Mul, a[i], b[j]);
-            let q = self.emit.binary(Binary::Mul, a[j], b[i]);
-            self.emit.binary(Binary::Sub, p, q)
-        };
-        vec![term(1, 2), term(2, 0), term(0, 1)]
-    }
-
     /// Matrix products: matrix by matrix, matrix by column vector, row vector by matrix. A
     /// three-component vector with a 4x4 matrix is a point (w = 1, divided by the result's w).
     fn mat_mul(&mut self, a: &[Reg], ta: Type, b: &[Reg], tb: Type) -> Val {
@@ -267,7 +249,7 @@ impl Lower<'_> {
         let entry = |this: &mut Self, row: &dyn Fn(usize) -> Reg, col: &dyn Fn(usize) -> Reg| {
             let pairs: Vec<(Reg, Reg)> = (0..n).map(|k| (row(k), col(k))).collect();
             let (x, y): (Vec<Reg>, Vec<Reg>) = pairs.into_iter().unzip();
-            this.dot(&x, &y)
+            arith::dot(&mut this.emit, &x, &y)
         };
         match (is_matrix(ta), is_matrix(tb)) {
             (true, true) => {

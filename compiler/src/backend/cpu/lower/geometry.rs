@@ -16,33 +16,13 @@
 
 use super::{Lower, Val};
 use crate::backend::CLIP_INPUT;
+use crate::backend::arith::{self, Rule};
 use crate::backend::cpu::code::{Binary, Compare, Reg};
 use crate::diag::{Code as DiagCode, Diagnostic};
 use crate::ir::ExprId;
 use crate::ir::builtin::Builtin;
 use crate::ir::builtin::BuiltinId as B;
 use crate::ir::types::{Base, Type};
-
-/// How `transform` treats a three-component value.
-#[derive(Copy, Clone, PartialEq, Eq)]
-pub(crate) enum Rule {
-    /// Translated and divided by w.
-    Point,
-    /// Not translated.
-    Vector,
-    /// By the inverse transpose.
-    Normal,
-}
-
-impl Rule {
-    fn of(base: Base) -> Rule {
-        match base {
-            Base::Point => Rule::Point,
-            Base::Normal => Rule::Normal,
-            _ => Rule::Vector,
-        }
-    }
-}
 
 impl Lower<'_> {
     /// The built-ins of this module (`builtin` sends them here); `None` for the others, and for
@@ -68,7 +48,7 @@ impl Lower<'_> {
                 let out = match (&vals[0], vals.len()) {
                     (Val::Str(to), 2) => {
                         let (to_m, from_m) = self.space_matrices(to);
-                        self.apply(&value, rule, &to_m, &from_m)
+                        arith::apply(&mut self.emit, &value, rule, &to_m, &from_m)
                     }
                     (Val::Str(from), 3) if arg_ty(1).base == Base::String => {
                         let to = match &vals[1] {
@@ -76,22 +56,25 @@ impl Lower<'_> {
                             _ => "current".into(),
                         };
                         let (to_from, from_from) = self.space_matrices(from);
-                        let current = self.apply(&value, rule, &from_from, &to_from);
+                        let current = arith::apply(&mut self.emit, &value, rule, &from_from, &to_from);
                         let (to_m, from_m) = self.space_matrices(&to);
-                        self.apply(&current, rule, &to_m, &from_m)
+                        arith::apply(&mut self.emit, &current, rule, &to_m, &from_m)
                     }
                     (Val::Str(from), 3) => {
                         let (to_from, from_from) = self.space_matrices(from);
-                        let current = self.apply(&value, rule, &from_from, &to_from);
+                        let current = arith::apply(&mut self.emit, &value, rule, &from_from, &to_from);
                         let m = vals[1].floats().to_vec();
-                        let inv = self.invert(&m, Base::Matrix4);
-                        self.apply(&current, rule, &m, &inv)
+                        let inv = arith::invert(&mut self.emit, &m, 4);
+                        arith::apply(&mut self.emit, &current, rule, &m, &inv)
                     }
                     _ => {
                         let m = vals[0].floats().to_vec();
-                        let inv =
-                            if rule == Rule::Normal { self.invert(&m, Base::Matrix4) } else { m.clone() };
-                        self.apply(&value, rule, &m, &inv)
+                        let inv = if rule == Rule::Normal {
+                            arith::invert(&mut self.emit, &m, 4)
+                        } else {
+                            m.clone()
+                        };
+                        arith::apply(&mut self.emit, &value, rule, &m, &inv)
                     }
                 };
                 Val::Float(out)
@@ -105,7 +88,10 @@ impl Lower<'_> {
                 let m = vals[0].floats();
                 Val::Float((0..9).map(|k| m[(k / 3) * 4 + k % 3]).collect())
             }
-            B::Invert => Val::Float(self.invert(vals[0].floats(), arg_ty(0).base)),
+            B::Invert => {
+                let n = if arg_ty(0).base == Base::Matrix3 { 3 } else { 4 };
+                Val::Float(arith::invert(&mut self.emit, vals[0].floats(), n))
+            }
             B::Depth => Val::Float(vec![self.depth(vals[0].floats()[2])]),
             B::ColourSpace => {
                 let Val::Str(name) = &vals[0] else { return Ok(None) };
@@ -166,98 +152,8 @@ impl Lower<'_> {
         let value = v.floats().to_vec();
         let (to_m, from_m) = self.space_matrices(space);
         if ty.base == Base::Matrix4 {
-            return Val::Float(self.product(&value, &from_m, 4));
+            return Val::Float(arith::product(&mut self.emit, &value, &from_m, 4));
         }
-        Val::Float(self.apply(&value, Rule::of(ty.base), &from_m, &to_m))
-    }
-
-    /// `v` transformed by `m` (row-vector convention) under `rule`; `inv` is `m`'s inverse, used by
-    /// normals.
-    pub(crate) fn apply(&mut self, v: &[Reg], rule: Rule, m: &[Reg], inv: &[Reg]) -> Vec<Reg> {
-        let row_times = |this: &mut Self, j: usize, mat: &dyn Fn(usize, usize) -> Reg, w: Option<Reg>| {
-            let mut sum = this.emit.binary(Binary::Mul, v[0], mat(0, j));
-            for (i, x) in v.iter().enumerate().skip(1).take(2) {
-                let p = this.emit.binary(Binary::Mul, *x, mat(i, j));
-                sum = this.emit.binary(Binary::Add, sum, p);
-            }
-            match w {
-                Some(t) => this.emit.binary(Binary::Add, sum, t),
-                None => sum,
-            }
-        };
-        match rule {
-            Rule::Point => {
-                let out: Vec<Reg> =
-                    (0..4).map(|j| row_times(self, j, &|i, j| m[i * 4 + j], Some(m[12 + j]))).collect();
-                self.dehomogenize(out, true)
-            }
-            Rule::Vector => (0..3).map(|j| row_times(self, j, &|i, j| m[i * 4 + j], None)).collect(),
-            // n' = n * inverse(M)^T: element (i, j) of the transpose is inv[j][i].
-            Rule::Normal => (0..3).map(|j| row_times(self, j, &|i, j| inv[j * 4 + i], None)).collect(),
-        }
-    }
-
-    /// The matrix product `a * b` of two n x n matrices.
-    fn product(&mut self, a: &[Reg], b: &[Reg], n: usize) -> Vec<Reg> {
-        let mut out = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                let row: Vec<Reg> = (0..n).map(|k| a[i * n + k]).collect();
-                let col: Vec<Reg> = (0..n).map(|k| b[k * n + j]).collect();
-                out.push(self.dot(&row, &col));
-            }
-        }
-        out
-    }
-
-    /// The inverse of a 3x3 or 4x4 matrix: the adjugate over the determinant (a singular matrix
-    /// gives infinities or NaN, as dividing by zero does).
-    pub(crate) fn invert(&mut self, m: &[Reg], base: Base) -> Vec<Reg> {
-        let n = if base == Base::Matrix3 { 3 } else { 4 };
-        let all: Vec<usize> = (0..n).collect();
-        let det = self.minor(m, n, &all, &all);
-        let mut out = vec![m[0]; n * n];
-        for i in 0..n {
-            for j in 0..n {
-                // inverse[i][j] = cofactor[j][i] / det.
-                let rows: Vec<usize> = all.iter().copied().filter(|r| *r != j).collect();
-                let cols: Vec<usize> = all.iter().copied().filter(|c| *c != i).collect();
-                let minor = self.minor(m, n, &rows, &cols);
-                let signed = if (i + j) % 2 == 0 {
-                    minor
-                } else {
-                    self.emit.unary(crate::backend::cpu::code::Unary::Neg, minor)
-                };
-                out[i * n + j] = self.emit.binary(Binary::Div, signed, det);
-            }
-        }
-        out
-    }
-
-    /// The determinant of the submatrix of the rows and columns given, by Laplace expansion.
-    fn minor(&mut self, m: &[Reg], n: usize, rows: &[usize], cols: &[usize]) -> Reg {
-        let at = |r: usize, c: usize| m[r * n + c];
-        match rows.len() {
-            1 => at(rows[0], cols[0]),
-            2 => {
-                let a = self.emit.binary(Binary::Mul, at(rows[0], cols[0]), at(rows[1], cols[1]));
-                let b = self.emit.binary(Binary::Mul, at(rows[0], cols[1]), at(rows[1], cols[0]));
-                self.emit.binary(Binary::Sub, a, b)
-            }
-            _ => {
-                let mut sum: Option<Reg> = None;
-                for (k, &c) in cols.iter().enumerate() {
-                    let rest: Vec<usize> = cols.iter().copied().filter(|x| *x != c).collect();
-                    let sub = self.minor(m, n, &rows[1..], &rest);
-                    let term = self.emit.binary(Binary::Mul, at(rows[0], c), sub);
-                    sum = Some(match sum {
-                        None => term,
-                        Some(s) if k % 2 == 0 => self.emit.binary(Binary::Add, s, term),
-                        Some(s) => self.emit.binary(Binary::Sub, s, term),
-                    });
-                }
-                sum.unwrap_or_else(|| self.emit.float(1.0))
-            }
-        }
+        Val::Float(arith::apply(&mut self.emit, &value, Rule::of(ty.base), &from_m, &to_m))
     }
 }

@@ -231,14 +231,6 @@ impl Lower<'_> {
         Ok(())
     }
 
-    /// A predefined variable of this shader by name (`L`, `Ps`), empty when it has none.
-    pub(super) fn global_named(&mut self, name: &str) -> Val {
-        match crate::sema::globals::lookup(name, self.shader.kind, self.shader.stanford) {
-            Some(g) => self.global(g),
-            None => Val::Float(Vec::new()),
-        }
-    }
-
     /// A string-valued expression, resolved at compile time.
     pub(super) fn string_of(&mut self, id: ExprId) -> Result<Option<smol_str::SmolStr>, Diagnostic> {
         match self.expr(id)? {

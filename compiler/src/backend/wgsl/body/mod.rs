@@ -454,18 +454,6 @@ impl<'a> Translator<'a> {
     pub fn condition(&mut self, id: ExprId) -> Result<Value, Diagnostic> {
         self.expr(id)
     }
-
-    /// The value of a predefined variable of this shader by name.
-    pub fn global_value(&mut self, name: &str) -> Result<Value, Diagnostic> {
-        match crate::sema::globals::lookup(name, self.shader.kind, self.shader.stanford) {
-            Some(g) => {
-                let var = self.global_var(g.name, Type::of(g.ty), g.perlight);
-                let p = self.pointer(var);
-                Ok(self.load(p))
-            }
-            None => Err(self.error(self.shader.span, format!("this shader has no `{name}`"))),
-        }
-    }
 }
 
 /// The private variable name of every local of `shader`: its source name, with the local's number

@@ -56,7 +56,7 @@ impl Translator<'_> {
             // RenderMan: a / M = a * inverse(M), with the interpreter's inverse.
             let n = if tb.base == Base::Matrix3 { 3 } else { 4 };
             let entries = self.entries(b, n);
-            let inverse = self.invert_entries(&entries, n as usize);
+            let inverse = crate::backend::arith::invert(self, &entries, n as usize);
             let inverse = self.matrix(&inverse, n);
             return Ok(self.mat_mul(a, ta, inverse, tb));
         }
@@ -173,7 +173,7 @@ impl Translator<'_> {
                 // Entry by entry in the interpreter's order of sums (WGSL leaves it open).
                 let n = if four { 4 } else { 3 };
                 let (x, y) = (self.entries(a, n), self.entries(b, n));
-                let entries = self.product(&x, &y, n as usize);
+                let entries = crate::backend::arith::product(self, &x, &y, n as usize);
                 (self.matrix(&entries, n), false)
             }
             (true, false) => {

@@ -4,6 +4,7 @@
 
 use naga::{Binding, BuiltIn, Expression, FunctionArgument, FunctionResult, Handle, ShaderStage, Statement};
 
+use crate::backend::arith::Arith;
 use crate::backend::wgsl::body::{Translator, Value};
 use crate::backend::wgsl::func::FnBuilder;
 use crate::backend::wgsl::interface::UniformSource;

@@ -265,3 +265,111 @@ pub(crate) fn apply<A: Arith>(s: &mut A, v: &[A::V], rule: Rule, m: &[A::V], inv
         Rule::Normal => (0..3).map(|j| column(s, j, &|i, j| inv[j * 4 + i], None)).collect(),
     }
 }
+
+/// The `u32` operations `random()`'s hash is written in, wrapping as WGSL's are.
+pub(crate) trait Words {
+    /// A `u32`.
+    type W: Copy;
+    /// A float value.
+    type F;
+    /// The word `x`.
+    fn word(&mut self, x: u32) -> Self::W;
+    /// `a * b`, wrapping.
+    fn wrapping_mul(&mut self, a: Self::W, b: Self::W) -> Self::W;
+    /// `a + b`, wrapping.
+    fn wrapping_add(&mut self, a: Self::W, b: Self::W) -> Self::W;
+    /// `a >> b` (`b` below 32).
+    fn shift_right(&mut self, a: Self::W, b: Self::W) -> Self::W;
+    /// `a ^ b`.
+    fn xor(&mut self, a: Self::W, b: Self::W) -> Self::W;
+    /// A word below 2^24 as a float, times 2^-24 (exact in f32).
+    fn unit(&mut self, w: Self::W) -> Self::F;
+}
+
+/// `random()`: a float in [0, 1) from a hash of the point's index and the call site, PCG's output
+/// permutation applied twice, `pcg(pcg(point) ^ site * 0x9e3779b9)`, its top 24 bits over 2^24, so
+/// a program gives the same values on every run and every backend.
+pub(crate) fn random<S: Words>(s: &mut S, point: S::W, site: u32) -> S::F {
+    let inner = pcg(s, point);
+    let salt = s.word(site.wrapping_mul(0x9e37_79b9));
+    let mixed = s.xor(inner, salt);
+    let h = pcg(s, mixed);
+    let eight = s.word(8);
+    let top = s.shift_right(h, eight);
+    s.unit(top)
+}
+
+/// PCG's output permutation (RXS-M-XS) of one step of its LCG from `x`.
+fn pcg<S: Words>(s: &mut S, x: S::W) -> S::W {
+    let (multiplier, increment) = (s.word(747_796_405), s.word(2_891_336_453));
+    let state = s.wrapping_mul(x, multiplier);
+    let state = s.wrapping_add(state, increment);
+    let (k28, k4) = (s.word(28), s.word(4));
+    let top = s.shift_right(state, k28);
+    let shift = s.wrapping_add(top, k4);
+    let shifted = s.shift_right(state, shift);
+    let word = s.xor(shifted, state);
+    let m = s.word(277_803_737);
+    let word = s.wrapping_mul(word, m);
+    let k22 = s.word(22);
+    let high = s.shift_right(word, k22);
+    s.xor(high, word)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backend::cpu::scalar::Numbers;
+
+    #[test]
+    fn random_is_pcg_applied_twice() {
+        // The hash in closed form, as docs/numerics.md states it.
+        fn pcg(x: u32) -> u32 {
+            let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+            let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+            (word >> 22) ^ word
+        }
+        for (point, site) in [(0u32, 1u32), (1, 1), (12_345, 7), (u32::MAX, 3), (65_536 * 480 + 17, 200)] {
+            let expected = f64::from(pcg(pcg(point) ^ site.wrapping_mul(0x9e37_79b9)) >> 8) / 16_777_216.0;
+            let got: f64 = random(&mut Numbers::<f64>::default(), point, site);
+            assert_eq!(got, expected, "point {point}, site {site}");
+            let single: f32 = random(&mut Numbers::<f32>::default(), point, site);
+            assert_eq!(f64::from(single), expected, "exact in f32 too");
+            assert!((0.0..1.0).contains(&got));
+        }
+    }
+
+    #[test]
+    fn invert_product_and_transform_on_numbers() {
+        let s = &mut Numbers::<f64>::default();
+        // A rotation about z by 90 degrees, scaled by 2, translated by (1, 2, 3), row-vector form.
+        let m = [0.0, 2.0, 0.0, 0.0, -2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 1.0, 2.0, 3.0, 1.0];
+        let inv = invert(s, &m, 4);
+        let identity = product(s, &m, &inv, 4);
+        for (k, x) in identity.iter().enumerate() {
+            let want = if k % 5 == 0 { 1.0 } else { 0.0 };
+            assert!((x - want).abs() < 1e-15, "entry {k}: {x}");
+        }
+        // (1, 0, 0) -> (0, 2, 0) + (1, 2, 3).
+        assert_eq!(apply(s, &[1.0, 0.0, 0.0], Rule::Point, &m, &inv), vec![1.0, 4.0, 3.0]);
+        assert_eq!(apply(s, &[1.0, 0.0, 0.0], Rule::Vector, &m, &inv), vec![0.0, 2.0, 0.0]);
+        // A normal goes by the inverse transpose: rotated, scaled by 1/2.
+        assert_eq!(apply(s, &[1.0, 0.0, 0.0], Rule::Normal, &m, &inv), vec![0.0, 0.5, 0.0]);
+        assert_eq!(minor(s, &m, 4, &[0, 1, 2, 3], &[0, 1, 2, 3]), 8.0, "det = 2^3");
+        assert_eq!(cross(s, &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0]), [0.0, 0.0, 1.0]);
+        assert_eq!(dot(s, &[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0]), 32.0);
+        assert_eq!(normalize(s, &[3.0, 0.0, 4.0]), vec![0.6, 0.0, 0.8]);
+    }
+
+    #[test]
+    fn filterstep_is_the_covered_fraction() {
+        let s = &mut Numbers::<f64>::default();
+        assert_eq!(filterstep(s, 0.5, 0.0, 1.0), 0.5);
+        assert_eq!(filterstep(s, 0.25, 0.0, 1.0), 0.75);
+        assert_eq!(filterstep(s, 2.0, 0.0, 1.0), 0.0);
+        assert_eq!(filterstep(s, -1.0, 0.0, 1.0), 1.0);
+        // An empty interval is a plain step at x0.
+        assert_eq!(filterstep(s, 0.5, 0.5, 0.5), 1.0);
+        assert_eq!(filterstep(s, 0.6, 0.5, 0.5), 0.0);
+    }
+}

@@ -4,7 +4,7 @@
 //! `i32`/`u32`. docs/numerics.md lists every choice made here and why. The fixed sequences (`clamp`,
 //! `smoothstep`, `sign`, ...) are `backend::arith`'s, run here on numbers ([`Numbers`]).
 
-use crate::backend::arith::Arith;
+use crate::backend::arith::{self, Arith, Words};
 
 /// The float types the interpreter evaluates in.
 pub trait Real:
@@ -290,6 +290,40 @@ impl<R: Real> Arith for Numbers<R> {
     #[inline(always)]
     fn select(&mut self, c: bool, a: R, b: R) -> R {
         if c { a } else { b }
+    }
+}
+
+/// `random()`'s value at point `point` for call site `site` (`backend::arith::random`).
+pub fn random<R: Real>(point: u32, site: u32) -> R {
+    arith::random(&mut Numbers::<R>::default(), point, site)
+}
+
+impl<R: Real> Words for Numbers<R> {
+    type W = u32;
+    type F = R;
+    #[inline(always)]
+    fn word(&mut self, x: u32) -> u32 {
+        x
+    }
+    #[inline(always)]
+    fn wrapping_mul(&mut self, a: u32, b: u32) -> u32 {
+        a.wrapping_mul(b)
+    }
+    #[inline(always)]
+    fn wrapping_add(&mut self, a: u32, b: u32) -> u32 {
+        a.wrapping_add(b)
+    }
+    #[inline(always)]
+    fn shift_right(&mut self, a: u32, b: u32) -> u32 {
+        a.wrapping_shr(b)
+    }
+    #[inline(always)]
+    fn xor(&mut self, a: u32, b: u32) -> u32 {
+        a ^ b
+    }
+    #[inline(always)]
+    fn unit(&mut self, w: u32) -> R {
+        R::from_u32(w) / R::from_f64(16_777_216.0)
     }
 }
 

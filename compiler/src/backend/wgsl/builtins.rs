@@ -148,7 +148,7 @@ impl Translator<'_> {
                 let parts: Vec<Value> = (0..ret.base.components())
                     .map(|_| {
                         self.random_sites += 1;
-                        self.random_hash(point, self.random_sites)
+                        arith::random(self, point, self.random_sites)
                     })
                     .collect();
                 if parts.len() == 1 {
@@ -457,38 +457,6 @@ impl Translator<'_> {
         };
         self.write_output(args[1], value);
         Ok(self.float(1.0))
-    }
-}
-
-impl Translator<'_> {
-    /// `random()`'s value for one call site: `pcg(pcg(point) ^ site * 0x9e3779b9)`, its top 24 bits
-    /// over 2^24 (`exec::instructions::random`).
-    fn random_hash(&mut self, point: Value, site: u32) -> Value {
-        let u = |this: &mut Self, x: u32| this.fb.add(Expression::Literal(naga::Literal::U32(x)));
-        let pcg = |this: &mut Self, x: Value| {
-            let (m, a) = (u(this, 747_796_405), u(this, 2_891_336_453));
-            let state = this.binary(Op::Multiply, x, m);
-            let state = this.binary(Op::Add, state, a);
-            let (k28, k4) = (u(this, 28), u(this, 4));
-            let top = this.binary(Op::ShiftRight, state, k28);
-            let shift = this.binary(Op::Add, top, k4);
-            let shifted = this.binary(Op::ShiftRight, state, shift);
-            let word = this.binary(Op::ExclusiveOr, shifted, state);
-            let m2 = u(this, 277_803_737);
-            let word = this.binary(Op::Multiply, word, m2);
-            let k22 = u(this, 22);
-            let high = this.binary(Op::ShiftRight, word, k22);
-            this.binary(Op::ExclusiveOr, high, word)
-        };
-        let inner = pcg(self, point);
-        let salt = u(self, site.wrapping_mul(0x9e37_79b9));
-        let mixed = self.binary(Op::ExclusiveOr, inner, salt);
-        let h = pcg(self, mixed);
-        let k8 = u(self, 8);
-        let top = self.binary(Op::ShiftRight, h, k8);
-        let f = self.fb.add(Expression::As { expr: top, kind: naga::ScalarKind::Float, convert: Some(4) });
-        let scale = self.float(1.0 / 16_777_216.0);
-        self.binary(Op::Multiply, f, scale)
     }
 }
 

@@ -13,7 +13,7 @@
 
 use naga::{BinaryOperator as Op, Expression, MathFunction as M, ScalarKind};
 
-use crate::backend::arith::Arith;
+use crate::backend::arith::{Arith, Words};
 
 use super::body::{Translator, Value};
 use crate::ir::types::{Base, Type};
@@ -196,5 +196,30 @@ impl Arith for Translator<'_> {
     }
     fn select(&mut self, c: Value, a: Value, b: Value) -> Value {
         self.fb.add(Expression::Select { condition: c, accept: a, reject: b })
+    }
+}
+
+impl Words for Translator<'_> {
+    type W = Value;
+    type F = Value;
+    fn word(&mut self, x: u32) -> Value {
+        self.fb.add(Expression::Literal(naga::Literal::U32(x)))
+    }
+    fn wrapping_mul(&mut self, a: Value, b: Value) -> Value {
+        self.binary(Op::Multiply, a, b)
+    }
+    fn wrapping_add(&mut self, a: Value, b: Value) -> Value {
+        self.binary(Op::Add, a, b)
+    }
+    fn shift_right(&mut self, a: Value, b: Value) -> Value {
+        self.binary(Op::ShiftRight, a, b)
+    }
+    fn xor(&mut self, a: Value, b: Value) -> Value {
+        self.binary(Op::ExclusiveOr, a, b)
+    }
+    fn unit(&mut self, w: Value) -> Value {
+        let f = self.fb.add(Expression::As { expr: w, kind: ScalarKind::Float, convert: Some(4) });
+        let scale = self.float(1.0 / 16_777_216.0);
+        self.binary(Op::Multiply, f, scale)
     }
 }

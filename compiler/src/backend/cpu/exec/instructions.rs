@@ -191,7 +191,7 @@ impl<F: Real> Machine<F> {
                 let ints = &self.ints;
                 let d = &mut self.floats.varying[dst.index as usize];
                 for (lane, d) in d.iter_mut().enumerate() {
-                    *d = F::from_f64(random(ints.at(point, lane), site));
+                    *d = s::random(ints.at(point, lane), site);
                 }
             }
         }
@@ -463,16 +463,4 @@ fn print_line(line: &str) {
     } else if n == MAX_PRINTED_LINES {
         eprintln!("... further printf output left out (more than {MAX_PRINTED_LINES} lines)");
     }
-}
-
-/// `random()`: a float in [0, 1) from a hash of the point's index and the call site (PCG's output
-/// permutation applied twice), so a program gives the same values on every run and every backend.
-pub(crate) fn random(point: u32, site: u32) -> f64 {
-    fn pcg(x: u32) -> u32 {
-        let state = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
-        let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
-        (word >> 22) ^ word
-    }
-    let h = pcg(pcg(point) ^ site.wrapping_mul(0x9e37_79b9));
-    f64::from(h >> 8) / f64::from(1u32 << 24)
 }

@@ -12,7 +12,6 @@ mod mask;
 use crate::backend::cpu::code::{Files, Inst, Node};
 use crate::backend::cpu::scalar::Real;
 use crate::source::Span;
-pub(crate) use instructions::random;
 pub(crate) use kernels::File;
 pub(crate) use mask::Mask;
 

@@ -149,8 +149,10 @@ impl Lower<'_> {
                     (0..n)
                         .map(|_| {
                             self.random_sites += 1;
-                            let x =
-                                crate::backend::cpu::exec::random(UNIFORM_RANDOM_POINT, self.random_sites);
+                            let x = crate::backend::cpu::scalar::random::<f64>(
+                                UNIFORM_RANDOM_POINT,
+                                self.random_sites,
+                            );
                             self.emit.float(x)
                         })
                         .collect()

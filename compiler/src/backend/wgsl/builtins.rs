@@ -2,13 +2,16 @@
 //!
 //! Where WGSL has the function and is exact (`floor`, `min`, `mix`, ...) its own is used (the
 //! one-operation built-ins are `backend::ops`' table, beside the interpreter's instruction); where
-//! the interpreter fixes an order of operations that WGSL leaves open (`dot`, `length`, matrix
-//! products, `smoothstep`, `inversesqrt`) the sequence is written out, so that both backends give
-//! the same bits. Transcendentals (`sin`, `exp`, `pow`, ...) are WGSL's, within its accuracy
-//! rules. The composite families live beside this file: `geometry` (spaces, `transform`),
-//! `matrices` and `strings` (`concat`, `match`); colour spaces, `fresnel`, `ptlined`, `rotate`,
-//! `translate`, `scale` and `determinant` are the library's (`compiler/stdlib/builtins.sl`), and
-//! `spline` is arithmetic on its knots by then (`opt::splines`).
+//! Patina fixes an order of operations that WGSL leaves open (`dot`, `length`, matrix products,
+//! `smoothstep`, `inversesqrt`, ...) the sequence is `backend::arith`'s, built here as naga
+//! expressions, the one the interpreter runs, so that both backends give the same bits; the fast
+//! lowering uses WGSL's own functions instead. Transcendentals (`sin`, `exp`, `pow`, ...) are
+//! WGSL's, within its accuracy rules; `pow` of a negative base is the one definition WGSL lacks
+//! that only this backend has to add. Spaces and `transform` live in `geometry`, components and
+//! matrices in `matrices`, `concat` and `match` in `strings`; colour spaces, `faceforward`,
+//! `reflect`, `refract`, `distance`, `fresnel`, `ptlined`, `rotate`, `translate`, `scale` and
+//! `determinant` are the library's (`compiler/stdlib/builtins.sl`), and `spline` is arithmetic on
+//! its knots by then (`opt::splines`).
 
 use crate::backend::arith::{self, Arith};
 use crate::backend::ops::{CoreOp, core_op, not_core};

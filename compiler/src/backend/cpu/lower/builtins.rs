@@ -1,5 +1,7 @@
-//! Built-in functions: math, shaping and vector functions composed from the emitter's scalar
-//! operations, the sums over the bound lights, and the geometric family (in `geometry`).
+//! Built-in functions: the interpreter's instructions for `backend::ops`' one-operation built-ins
+//! and for `backend::arith`'s componentwise sequences (which those instructions run on numbers),
+//! `arith`'s vector sequences on registers, `random`, components, messages between shaders
+//! (`lightsource`, `surface`), texel fetches, and the geometric family (in `geometry`).
 
 use super::expr::pick;
 use super::{Lower, Val};

@@ -219,7 +219,7 @@ fn weight(b: &mut Builder, basis: &Basis, j: usize, t: ExprId) -> Option<ExprId>
     acc
 }
 
-/// Why a backend cannot run the call of `spline` `id` that [`expand`] left: its basis is not known
+/// Why a backend cannot run the call of `spline` `id` that `expand` left: its basis is not known
 /// when the shader is compiled, is no basis, or it has fewer than four knots.
 pub fn refusal(shader: &Shader, id: ExprId, strings: &[(String, String)]) -> Diagnostic {
     let span = shader.expr(id).span;

@@ -38,7 +38,7 @@
 //! `env:FILE` do): a texture w texels wide and w − 1 tall holds level 0 (w × w/2, w a power of
 //! two) in its top rows and each further level, half as wide and tall, below the previous one,
 //! down to 2 × 1. Such a map is filtered trilinearly: the footprint f (radians) is the lookup's
-//! `"__footprint"` (added by [`footprints`] before `opt::derivs`: √area(D), from D's screen
+//! `"__footprint"` (added by `footprints` before `opt::derivs`: √area(D), from D's screen
 //! derivatives) over |D|, times `"width"` when given; in level-0 texels it is
 //! f · w / 2π + blur · w (`"blur"`, a fraction of the map's width, when given), and the level is
 //! log2 of that (at least 1 texel), clamped to the last level. A cube atlas may carry its chain

@@ -2,7 +2,7 @@
 //! exactly, so that the interpreter and the GPU agree bit for bit on them. Floats are generic over
 //! [`Real`] (`f32` is the interpreter's normal mode, `f64` its ground-truth mode); integers are
 //! `i32`/`u32`. docs/numerics.md lists every choice made here and why. The fixed sequences (`clamp`,
-//! `smoothstep`, `sign`, ...) are `backend::arith`'s, run here on numbers ([`Numbers`]).
+//! `smoothstep`, `sign`, ...) are `backend::arith`'s, run here on numbers (`Numbers`).
 
 use crate::backend::arith::{self, Arith, Words};
 

@@ -3,9 +3,10 @@
 //! other: what they must agree on lives here, beside them: the [`binding`] of a shader to its
 //! lights and strings, the `ops` both compute as one operation per component (each paired with
 //! its instruction on either side), the `arith` sequences both compute where WGSL leaves the order
-//! of operations open (`dot`, matrix inverses, `smoothstep`, ...), the `match` built-in's `pattern` matcher, the names of the inputs both
-//! read ([`POINT_INDEX`], [`CLIP_INPUT`]), the fixed point of a uniform `random()`
-//! ([`UNIFORM_RANDOM_POINT`]) and the loop cap ([`MAX_LOOP_ITERATIONS`]). Two pieces join them:
+//! of operations open (`dot`, matrix inverses, `smoothstep`, ...), the `match` built-in's
+//! `pattern` matcher, the names of the inputs both read ([`POINT_INDEX`], [`CLIP_INPUT`]), the
+//! fixed point of a uniform `random()` ([`UNIFORM_RANDOM_POINT`]) and the loop cap
+//! ([`MAX_LOOP_ITERATIONS`]). Two pieces join them:
 //! [`defaults`], the interpreter computing the parameter defaults a GPU program's interface
 //! lists, and [`object`], a surface split and compiled for both at once (what a renderer needs).
 

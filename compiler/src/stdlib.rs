@@ -47,6 +47,8 @@ pub const LIBRARY_BUILTINS: &[BuiltinId] = &[
     BuiltinId::Refract,
     BuiltinId::Distance,
     BuiltinId::FaceForward,
+    BuiltinId::Radians,
+    BuiltinId::Degrees,
 ];
 
 /// The colour spaces (docs/builtins.md), converted by `compiler/stdlib/builtins.sl` for

@@ -323,13 +323,25 @@ color __ctransform_color(string to; color c)
     return __ctransform_color("rgb", to, c);
 }
 
-// Geometry and matrices: `faceforward`, `distance`, `reflect`, `refract`, `ptlined`, `rotate` (of a point and of a matrix),
+// Angles (`radians`, `degrees`), geometry and matrices: `faceforward`, `distance`, `reflect`, `refract`, `ptlined`, `rotate` (of a point and of a matrix),
 // `translate`, `scale`, `determinant` and `fresnel`. Each is written operation for operation as the interpreter computed
 // it natively before it moved here, so that its bits stay the same (docs/numerics.md: exact on
 // both backends): products and sums in the order written, sums left to right. `dot` is the
 // built-in, never the `.` operator (which the GPU backend hands to WGSL's `dot`, whose order of
 // summation is the driver's). Matrices are row by row (`m[i][j]`, row i, column j) in RenderMan's
 // row-vector convention, points transformed as `(p, 1) m`.
+
+// Angles: one product by pi / 180 or 180 / pi, the f64 constants written here (rounded once more
+// to f32 where the program runs in f32), as both backends computed them natively.
+float __radians_float(float angle)
+{
+    return angle * 0.017453292519943295;
+}
+
+float __degrees_float(float angle)
+{
+    return angle * 57.29577951308232;
+}
 
 // N turned to face against I: N where I and the reference normal Nref point opposite ways
 // (dot(I, Nref) < 0), else -N, WGSL's `faceForward`. The semantic stage passes the geometric normal

@@ -52,3 +52,27 @@ pub fn constant_defaults(host: &Prepared, strings: &[(String, String)]) -> Vec<(
         .map(|(name, (a, _))| (name, a))
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::preprocess::MemoryLoader;
+
+    #[test]
+    fn defaults_that_call_functions_reach_the_interface() {
+        // The calls in a default are statements ahead of the body; the host stage keeps them for
+        // the default, though nothing in the body reads their results.
+        let src = "float twice(float x) { return 2 * x; }
+            surface t(float a = radians(30); float b = twice(distance(point(0, 0, 0), point(3, 4, 0)));
+                      float c = 1 + b) { Ci = color(a, b, c); }";
+        let checked = crate::check_source("t.sl", src, &MemoryLoader::default());
+        assert!(!checked.has_errors(), "{:?}", checked.diagnostics);
+        let shader = Prepared::new(checked.program.shaders[0].clone());
+        let stages = crate::split::split(&shader).unwrap_or_else(|d| panic!("{}", d.message));
+        let defaults = constant_defaults(&stages.host, &[]);
+        for (name, want) in [("a", std::f64::consts::PI / 6.0), ("b", 10.0), ("c", 11.0)] {
+            let value = defaults.iter().find(|(n, _)| n == name).map(|(_, v)| v[0]);
+            assert!(value.is_some_and(|v| (v - want).abs() < 1e-15), "{name}: {value:?}, not {want}");
+        }
+    }
+}

@@ -33,7 +33,11 @@ pub(super) fn split(shader: &Shader, fold_host: bool) -> Result<Stages, Diagnost
     for stage in [StageKind::Fragment, StageKind::Vertex, StageKind::Host] {
         let exports: FxHashMap<ExprId, LocalId> =
             requests.iter().filter(|(_, r)| r.from == stage).map(|(e, _)| (*e, LocalId(u32::MAX))).collect();
-        let roots = if stage == StageKind::Fragment { outputs(shader) } else { FxHashSet::default() };
+        let roots = match stage {
+            StageKind::Fragment => outputs(shader),
+            StageKind::Vertex => FxHashSet::default(),
+            StageKind::Host => default_reads(shader),
+        };
         let slicer = Slicer::analyse(shader, &placement, stage, roots, &exports, fold_host)?;
         for (e, hint) in slicer.imports {
             let from = placement.of(e);
@@ -117,6 +121,27 @@ pub(super) fn split(shader: &Shader, fold_host: bool) -> Result<Stages, Diagnost
         fragment: Prepared::assume_prepared(build(StageKind::Fragment)?),
         transfers,
     })
+}
+
+/// What the host must compute for the parameters' defaults: the locals their expressions read,
+/// the results of the calls in a default (user functions, library built-ins), which the semantic
+/// stage lowers into statements ahead of the body and the interpreter runs before the default
+/// (`backend::cpu::lower`'s `default_prelude`).
+fn default_reads(shader: &Shader) -> FxHashSet<Var> {
+    fn reads(shader: &Shader, id: ExprId, out: &mut FxHashSet<Var>) {
+        let kind = &shader.expr(id).kind;
+        if let ExprKind::Local(l) = kind {
+            out.insert(Var::Local(*l));
+        }
+        kind.for_each_operand(|a| reads(shader, a, out));
+    }
+    let mut out = FxHashSet::default();
+    for &p in &shader.params {
+        if let LocalKind::Param { default: Some(d), .. } = shader.local(p).kind {
+            reads(shader, d, &mut out);
+        }
+    }
+    out
 }
 
 /// What the fragment stage must produce: the predefined variables the body writes, output

@@ -360,3 +360,20 @@ fn nested_functions_are_defined_at_each_call() {
     let expected = |s: f64, t: f64| 9.0 * s + 3.0 * t + 3.0;
     assert_eq!(out[0], [[expected(1.0, 2.0); 3], [expected(0.5, 0.0); 3]].concat());
 }
+
+#[test]
+fn parameter_defaults_may_call_functions_and_library_built_ins() {
+    // The calls in a default (a user function, a built-in the library implements) are statements
+    // the semantic stage puts ahead of the body; the default still has their value.
+    let src = "float twice(float x) { return 2 * x; }
+        surface t(float a = twice(3); float b = distance(point(0, 0, 0), point(3, 4, 0));
+                  float c = 1 + twice(b)) { Ci = color(a, b, c); }";
+    let program = compile(src, &Binding::default());
+    let mut eval = Evaluator::<f64>::new(&program);
+    let out = eval.eval_points(2, &[], &["Ci"]).unwrap();
+    assert_eq!(out[0], vec![6.0, 5.0, 11.0, 6.0, 5.0, 11.0]);
+    // A value the caller gives replaces its default, and the later defaults read it.
+    eval.set("b", &[7.0]).unwrap();
+    let out = eval.eval_points(1, &[], &["Ci"]).unwrap();
+    assert_eq!(out[0], vec![6.0, 7.0, 15.0]);
+}

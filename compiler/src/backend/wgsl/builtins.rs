@@ -58,8 +58,6 @@ impl Translator<'_> {
         // The value of a built-in without one (`setcomp`, `printf`, ...): never read.
         let void = |this: &mut Self| this.float(0.0);
         Ok(match b.id {
-            B::Radians => self.scale(v(0), std::f64::consts::PI / 180.0),
-            B::Degrees => self.scale(v(0), 180.0 / std::f64::consts::PI),
             B::Pow => {
                 let y = wide(self, 1);
                 if self.never_negative(args[0], 0) {
@@ -290,7 +288,9 @@ impl Translator<'_> {
             | B::Reflect
             | B::Refract
             | B::Distance
-            | B::FaceForward => {
+            | B::FaceForward
+            | B::Radians
+            | B::Degrees => {
                 return Err(super::internal(
                     span,
                     format!(
@@ -323,11 +323,6 @@ impl Translator<'_> {
             }
             B::Texel2d | B::Texel3d | B::Texsize2d | B::Texsize3d => unreachable!("fetched above"),
         })
-    }
-
-    fn scale(&mut self, a: Value, k: f64) -> Value {
-        let k = self.float(k);
-        self.binary(Op::Multiply, a, k)
     }
 
     /// `sqrt(v . v)` of a three-component vector, summed as the interpreter does.

@@ -4,8 +4,6 @@
 //! its [`operands`], which the analysis follows, and [`Diff::call`] builds the derivative. The
 //! list of the built-ins with derivative 0 is in the module documentation of `opt::derivs`.
 
-use std::f64::consts::PI;
-
 use super::analysis::dtype;
 use super::rules::Diff;
 use crate::ir::builtin::Builtin;
@@ -55,9 +53,7 @@ pub(super) enum Through {
 pub(super) fn rule(b: &Builtin) -> Rule {
     use Through::{AfterFirst, All, First, Knots, Last};
     match b.id {
-        B::Radians
-        | B::Degrees
-        | B::Sin
+        B::Sin
         | B::Asin
         | B::Cos
         | B::Acos
@@ -131,7 +127,9 @@ pub(super) fn rule(b: &Builtin) -> Rule {
         | B::Reflect
         | B::Refract
         | B::Distance
-        | B::FaceForward => Rule::Library,
+        | B::FaceForward
+        | B::Radians
+        | B::Degrees => Rule::Library,
     }
 }
 
@@ -183,11 +181,6 @@ impl Diff<'_> {
         let ty = self.ty(e);
         let dty = dtype(ty).expect("varies");
         match (b.id, a.len()) {
-            (B::Radians | B::Degrees, _) => {
-                let dx = self.d(a[0], axis)?;
-                let k = self.lit(if b.id == B::Radians { PI / 180.0 } else { 180.0 / PI });
-                Some(self.mul(dx, k))
-            }
             (B::Sin, _) => {
                 let dx = self.d(a[0], axis)?;
                 let c = self.shared(e, 0, |s| s.b.call(B::Cos, vec![a[0]]));
@@ -432,7 +425,9 @@ impl Diff<'_> {
                 | B::Reflect
                 | B::Refract
                 | B::Distance
-                | B::FaceForward,
+                | B::FaceForward
+                | B::Radians
+                | B::Degrees,
                 _,
             ) => None,
         }

@@ -59,8 +59,6 @@ impl Lower<'_> {
         let is_int = matches!(ret.base, Base::Int | Base::Uint);
         let signed = ret.base == Base::Int;
         Ok(match b.id {
-            B::Radians => self.scale(f(0), std::f64::consts::PI / 180.0),
-            B::Degrees => self.scale(f(0), 180.0 / std::f64::consts::PI),
             B::Pow => Val::Float(self.zip(Binary::Pow, f(0), f(1))),
             B::InverseSqrt => self.each(Unary::InverseSqrt, f(0)),
             B::Log if args.len() == 2 => {
@@ -237,7 +235,9 @@ impl Lower<'_> {
             | B::Reflect
             | B::Refract
             | B::Distance
-            | B::FaceForward => {
+            | B::FaceForward
+            | B::Radians
+            | B::Degrees => {
                 return Err(Diagnostic::error(
                     DiagCode::Internal,
                     format!("`{}` reached the interpreter as a built-in", b.id),
@@ -413,11 +413,6 @@ impl Lower<'_> {
     pub(crate) fn each3(&mut self, op: Ternary, a: &[Reg], b: &[Reg], c: &[Reg]) -> Val {
         let n = a.len().max(b.len()).max(c.len());
         Val::Float((0..n).map(|i| self.emit.ternary(op, pick(a, i), pick(b, i), pick(c, i))).collect())
-    }
-
-    fn scale(&mut self, a: &[Reg], k: f64) -> Val {
-        let k = self.emit.float(k);
-        Val::Float(self.zip(Binary::Mul, a, &[k]))
     }
 
     /// The number of the texture a name or `texref` argument denotes (a string's value, or the

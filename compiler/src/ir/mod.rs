@@ -6,6 +6,7 @@
 //! rate and one span. Expressions are pure; every effect is a statement.
 
 pub mod builtin;
+pub mod defaults;
 pub mod global;
 pub mod stores;
 pub mod strings;

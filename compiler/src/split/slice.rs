@@ -36,7 +36,8 @@ pub(super) fn split(shader: &Shader, fold_host: bool) -> Result<Stages, Diagnost
         let roots = match stage {
             StageKind::Fragment => outputs(shader),
             StageKind::Vertex => FxHashSet::default(),
-            StageKind::Host => default_reads(shader),
+            // What the parameters' defaults read (`ir::defaults`).
+            StageKind::Host => shader.default_reads().into_iter().map(Var::Local).collect(),
         };
         let slicer = Slicer::analyse(shader, &placement, stage, roots, &exports, fold_host)?;
         for (e, hint) in slicer.imports {
@@ -121,27 +122,6 @@ pub(super) fn split(shader: &Shader, fold_host: bool) -> Result<Stages, Diagnost
         fragment: Prepared::assume_prepared(build(StageKind::Fragment)?),
         transfers,
     })
-}
-
-/// What the host must compute for the parameters' defaults: the locals their expressions read,
-/// the results of the calls in a default (user functions, library built-ins), which the semantic
-/// stage lowers into statements ahead of the body and the interpreter runs before the default
-/// (`backend::cpu::lower`'s `default_prelude`).
-fn default_reads(shader: &Shader) -> FxHashSet<Var> {
-    fn reads(shader: &Shader, id: ExprId, out: &mut FxHashSet<Var>) {
-        let kind = &shader.expr(id).kind;
-        if let ExprKind::Local(l) = kind {
-            out.insert(Var::Local(*l));
-        }
-        kind.for_each_operand(|a| reads(shader, a, out));
-    }
-    let mut out = FxHashSet::default();
-    for &p in &shader.params {
-        if let LocalKind::Param { default: Some(d), .. } = shader.local(p).kind {
-            reads(shader, d, &mut out);
-        }
-    }
-    out
 }
 
 /// What the fragment stage must produce: the predefined variables the body writes, output

@@ -390,7 +390,7 @@ impl Translator<'_> {
         let halved_whole = self.math1(M::Trunc, halved);
         let odd = self.binary(Op::NotEqual, halved, halved_whole);
         let flip = self.binary(Op::And, take, odd);
-        let flipped = self.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: power });
+        let flipped = self.neg(power);
         self.select(flip, flipped, power)
     }
 

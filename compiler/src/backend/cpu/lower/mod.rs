@@ -12,7 +12,7 @@ mod expr;
 mod geometry;
 mod stmt;
 
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 use smol_str::SmolStr;
 
 use crate::backend::binding::Binding;
@@ -67,62 +67,6 @@ pub struct Slot {
     pub regs: Vec<Reg>,
 }
 
-/// The statements a parameter's default `value` needs run first: the semantic stage lowers the
-/// calls in a default (user functions, the built-ins the library implements) into statements ahead
-/// of the shader's own, and the default reads their results from temporaries. They are the body's
-/// top-level statements that store a local the default reads, transitively, in body order; they
-/// also stay in the body (running them twice computes the same temporaries).
-fn default_prelude(shader: &Shader, value: ExprId) -> Vec<Stmt> {
-    let mut needed = FxHashSet::default();
-    expr_locals(shader, value, &mut needed);
-    let mut taken = vec![false; shader.body.len()];
-    // Later statements can only feed earlier ones' inputs through locals: walk backwards.
-    for (i, stmt) in shader.body.iter().enumerate().rev() {
-        let mut stored = FxHashSet::default();
-        stmt_locals(shader, stmt, &mut stored, &mut FxHashSet::default());
-        if stored.iter().any(|l| needed.contains(l) && !shader.params.contains(l)) {
-            taken[i] = true;
-            stmt_locals(shader, stmt, &mut FxHashSet::default(), &mut needed);
-        }
-    }
-    shader.body.iter().zip(taken).filter(|(_, t)| *t).map(|(s, _)| s.clone()).collect()
-}
-
-/// Adds the locals `id` reads to `out`.
-fn expr_locals(shader: &Shader, id: ExprId, out: &mut FxHashSet<LocalId>) {
-    let kind = &shader.expr(id).kind;
-    if let ExprKind::Local(l) = kind {
-        out.insert(*l);
-    }
-    kind.for_each_operand(|a| expr_locals(shader, a, out));
-}
-
-/// Adds the locals `stmt` (with the blocks in it) stores to `stored` and those it reads to `read`.
-fn stmt_locals(shader: &Shader, stmt: &Stmt, stored: &mut FxHashSet<LocalId>, read: &mut FxHashSet<LocalId>) {
-    let place_reads = |place: &Place, read: &mut FxHashSet<LocalId>| {
-        let mut p = place;
-        while let Place::Index(inner, index) = p {
-            expr_locals(shader, *index, read);
-            p = inner;
-        }
-    };
-    match stmt {
-        Stmt::Eval(e) => expr_locals(shader, *e, read),
-        Stmt::Store { place, value, .. } => {
-            stored.extend(place.root_local());
-            place_reads(place, read);
-            expr_locals(shader, *value, read);
-        }
-        Stmt::If { cond, .. } => expr_locals(shader, *cond, read),
-        Stmt::Loop { cond, .. } => cond.iter().for_each(|c| expr_locals(shader, *c, read)),
-        Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => {
-            args.iter().for_each(|a| expr_locals(shader, *a, read))
-        }
-        Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. } | Stmt::Lights { .. } => {}
-    }
-    stmt.for_each_block(|block| block.iter().for_each(|s| stmt_locals(shader, s, stored, read)));
-}
-
 /// A shader compiled for the interpreter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lowered {
@@ -145,7 +89,7 @@ pub fn lower(shader: &Shader, binding: &Binding) -> Result<Lowered, Diagnostic> 
         if let LocalKind::Param { default: Some(value), .. } = shader.local(param).kind {
             // Strings are compile-time values: their defaults are read where they are used.
             let Some(&slot) = l.local_slot.get(&(param, None)) else { continue };
-            let mut stmts = default_prelude(shader, value);
+            let mut stmts = shader.default_prelude(value);
             stmts.push(Stmt::Store { place: Place::Local(param), value, span: shader.local(param).span });
             let code = l.block(&stmts)?;
             defaults.push((slot, code));

@@ -129,82 +129,16 @@ float hart_stretch(matrix T)
     return sigma;
 }
 
-// Vector interpolation in perlin_lerp's form a + t (b - a).
-vector hart_vlerp(float t; vector a, b)
-{
-    return a + t * (b - a);
-}
-
-// The gradient of a lattice point as a vector: perlin_grad is linear in its offset, so its
-// components are perlin_grad at the unit vectors.
-vector hart_grad_vector(int hash)
-{
-    return vector(perlin_grad(hash, 1, 0, 0), perlin_grad(hash, 0, 1, 0), perlin_grad(hash, 0, 0, 1));
-}
-
-#define HART_P(i) hart_p[(i) & 255]
-
-// The analytic gradient of Perlin's improved noise (perlin_improved_noise of compiler/stdlib/noise.sl:
-// the same cell, hash and gradients; Perlin's table is repeated here): with u = fade(x),
+// The analytic gradient of Perlin's improved noise, APST's DNoise (12), L226: dsnoise3 of
+// compiler/stdlib/noise.sl (the same cell, hash, gradients and closed form: with u = fade(x),
 // u' = 30 x^2 (x - 1)^2 and n_abc the corner dot products,
 // dn/dx = u' lerp(w, lerp(v, n100 - n000, n110 - n010), lerp(v, n101 - n001, n111 - n011))
-// plus the trilinear interpolation of the corners' gradient vectors (and alike in y and z).
-// This is APST's DNoise (12), L226. Continuous (the noise is C2).
+// plus the trilinear interpolation of the corners' gradient vectors, and alike in y and z)
+// without snoise3's scale. Continuous (the noise is C2).
 vector hart_noise_gradient(point p)
 {
-    constant int hart_p[256] = {
-        151, 160, 137,  91,  90,  15, 131,  13, 201,  95,  96,  53, 194, 233,   7, 225,
-        140,  36, 103,  30,  69, 142,   8,  99,  37, 240,  21,  10,  23, 190,   6, 148,
-        247, 120, 234,  75,   0,  26, 197,  62,  94, 252, 219, 203, 117,  35,  11,  32,
-         57, 177,  33,  88, 237, 149,  56,  87, 174,  20, 125, 136, 171, 168,  68, 175,
-         74, 165,  71, 134, 139,  48,  27, 166,  77, 146, 158, 231,  83, 111, 229, 122,
-         60, 211, 133, 230, 220, 105,  92,  41,  55,  46, 245,  40, 244, 102, 143,  54,
-         65,  25,  63, 161,   1, 216,  80,  73, 209,  76, 132, 187, 208,  89,  18, 169,
-        200, 196, 135, 130, 116, 188, 159,  86, 164, 100, 109, 198, 173, 186,   3,  64,
-         52, 217, 226, 250, 124, 123,   5, 202,  38, 147, 118, 126, 255,  82,  85, 212,
-        207, 206,  59, 227,  47,  16,  58,  17, 182, 189,  28,  42, 223, 183, 170, 213,
-        119, 248, 152,   2,  44, 154, 163,  70, 221, 153, 101, 155, 167,  43, 172,   9,
-        129,  22,  39, 253,  19,  98, 108, 110,  79, 113, 224, 232, 178, 185, 112, 104,
-        218, 246,  97, 228, 251,  34, 242, 193, 238, 210, 144,  12, 191, 179, 162, 241,
-         81,  51, 145, 235, 249,  14, 239, 107,  49, 192, 214,  31, 181, 199, 106, 157,
-        184,  84, 204, 176, 115, 121,  50,  45, 127,   4, 150, 254, 138, 236, 205,  93,
-        222, 114,  67,  29,  24,  72, 243, 141, 128, 195,  78,  66, 215,  61, 156, 180
-    };
-    float x = p[0], y = p[1], z = p[2];
-    float cx = floor(x), cy = floor(y), cz = floor(z);
-    x -= cx;
-    y -= cy;
-    z -= cz;
-    int X = int(cx - 256 * floor(cx * 0.00390625)) & 255;
-    int Y = int(cy - 256 * floor(cy * 0.00390625)) & 255;
-    int Z = int(cz - 256 * floor(cz * 0.00390625)) & 255;
-    float u = perlin_fade(x), v = perlin_fade(y), w = perlin_fade(z);
-    float du = 30 * x * x * (x * (x - 2) + 1);
-    float dv = 30 * y * y * (y * (y - 2) + 1);
-    float dw = 30 * z * z * (z * (z - 2) + 1);
-    int A = HART_P(X) + Y, AA = HART_P(A) + Z, AB = HART_P(A + 1) + Z;
-    int B = HART_P(X + 1) + Y, BA = HART_P(B) + Z, BB = HART_P(B + 1) + Z;
-    int h000 = HART_P(AA), h100 = HART_P(BA), h010 = HART_P(AB), h110 = HART_P(BB);
-    int h001 = HART_P(AA + 1), h101 = HART_P(BA + 1), h011 = HART_P(AB + 1), h111 = HART_P(BB + 1);
-    float n000 = perlin_grad(h000, x, y, z), n100 = perlin_grad(h100, x - 1, y, z);
-    float n010 = perlin_grad(h010, x, y - 1, z), n110 = perlin_grad(h110, x - 1, y - 1, z);
-    float n001 = perlin_grad(h001, x, y, z - 1), n101 = perlin_grad(h101, x - 1, y, z - 1);
-    float n011 = perlin_grad(h011, x, y - 1, z - 1), n111 = perlin_grad(h111, x - 1, y - 1, z - 1);
-    vector g = hart_vlerp(w,
-        hart_vlerp(v, hart_vlerp(u, hart_grad_vector(h000), hart_grad_vector(h100)),
-                      hart_vlerp(u, hart_grad_vector(h010), hart_grad_vector(h110))),
-        hart_vlerp(v, hart_vlerp(u, hart_grad_vector(h001), hart_grad_vector(h101)),
-                      hart_vlerp(u, hart_grad_vector(h011), hart_grad_vector(h111))));
-    float gx = du * perlin_lerp(w, perlin_lerp(v, n100 - n000, n110 - n010),
-                                   perlin_lerp(v, n101 - n001, n111 - n011));
-    float gy = dv * perlin_lerp(w, perlin_lerp(u, n010 - n000, n110 - n100),
-                                   perlin_lerp(u, n011 - n001, n111 - n101));
-    float gz = dw * perlin_lerp(v, perlin_lerp(u, n001 - n000, n101 - n100),
-                                   perlin_lerp(u, n011 - n010, n111 - n110));
-    return g + vector(gx, gy, gz);
+    return dsnoise3(p) / PATINA_SNOISE_SCALE;
 }
-
-#undef HART_P
 
 // The weight of a noise term of frequency k (cycles per unit of s) at filter width fw:
 // 1 - smoothstep(0.4, 1.6, k fw), Musgrave's filteredsnoise fade (T&M L10447-10450) over a wider
@@ -344,7 +278,7 @@ float hart_solid_footprint(point p; matrix Q; float nterms, amp, gain; matrix T;
 
 // The analytic gradient of hart_solid with respect to p (APST (10)-(12) with E9): the quadric's
 // 2 ([s t r 1] Q)_{1..3} plus, per term, a_i w_i lacunarity^i L dn, with L the linear part of T
-// and dn the gradient of noise3 at T_i(s) (0.5 PATINA_SNOISE_SCALE hart_noise_gradient). The
+// and dn the gradient of noise3 at T_i(s) (0.5 dsnoise3). The
 // faded weights w_i depend on the filter width only, so this is the gradient of the filtered f.
 // The screen-space filter width of f is |J^T grad| with J the Jacobian of p over the pixel;
 // hart_filterwidth approximates it by |grad| times p's filter width.
@@ -370,7 +304,8 @@ vector hart_solid_gradient_footprint(point p; matrix Q; float nterms, amp, gain;
     float i;
     for (i = 0; i < nt; i += 1) {
         float w = hart_term_weight(k, tf);
-        vector dn = (0.5 * PATINA_SNOISE_SCALE) * hart_noise_gradient(k * ts + ph);
+        // noise3 = 0.5 + 0.5 snoise3.
+        vector dn = 0.5 * dsnoise3(k * ts + ph);
         // The chain rule through s T: (L dn)_j = sum_k T_jk dn_k.
         vector ldn = vector(
             hart_entry(T, 0, 0, 1e9) * dn[0] + hart_entry(T, 0, 1, 1e9) * dn[1] + hart_entry(T, 0, 2, 1e9) * dn[2],
@@ -397,7 +332,9 @@ float hart_filterwidth(vector grad; float filterwidth)
 // sweep: clut length 4; m in {0, 1, 2, 3} (a whole number of segments, at most the table's length less one)
 color hart_ramp_at(float x; color clut[]; float m)
 {
-    float j = clamp(floor(x), 0, max(m - 1, 0));
+    // One segment (m at most 1) is segment 0, written out so that a compiler that knows m reads
+    // the table at constant indices (the clamp gives 0 there too, NaN included).
+    float j = m > 1 ? clamp(floor(x), 0, m - 1) : 0;
     int k = int(j);
     return clut[k] + (x - j) * (clut[k + 1] - clut[k]);
 }
@@ -411,10 +348,16 @@ color hart_ramp_integral(float y; color clut[]; float m)
     int kj = int(j);
     float t = y - j;
     color acc = 0;
-    float k;
-    for (k = 0; k < j; k += 1) {
-        int ik = int(k);
-        acc += 0.5 * (clut[ik] + clut[ik + 1]);
+    // One segment (m = 1, a two-colour map such as the wood's) has no whole segment below y.
+    // The test lets a compiler that knows m leave the loop out: a GPU pays for a loop's
+    // bookkeeping even when it runs no iteration, and lavapipe runs all three of the colour
+    // map's integrals for every pixel (its branches are masks): 10% of the wood's shading.
+    if (m > 1) {
+        float k;
+        for (k = 0; k < j; k += 1) {
+            int ik = int(k);
+            acc += 0.5 * (clut[ik] + clut[ik + 1]);
+        }
     }
     return acc + t * clut[kj] + (0.5 * t * t) * (clut[kj + 1] - clut[kj]);
 }

@@ -5,8 +5,11 @@
 //! a module variable, no copies), drawn as a full-screen quad. Each time is the median wall time
 //! of a render (drawing and reading the image back) less that of the same render with a trivial
 //! shader on the same side and at the same size, which leaves the shading; the table gives
-//! generated / hand-written. The four renders of a shader (each side's and each side's trivial
-//! one) take turns over 31 rounds, so that the load of the shared machine falls on all four alike.
+//! generated / hand-written. The renders of a shader (each side's and each side's trivial one)
+//! take turns over 31 rounds, so that the load of the shared machine falls on all alike; and that
+//! is done on [`DEVICES`] devices in turn, each compiling its own pipelines, since lavapipe's code
+//! for one WGSL runs at speeds up to ~15% apart from one compile to the next. The table gives the
+//! median ratio over the devices and each device's.
 //!
 //! The shaders: fBm (6 octaves of Perlin's improved noise, the standard library's `fbm`), plastic
 //! under four point lights (examples/shaders/plastic.sl and lights.sl's pointlight; by hand, the
@@ -34,6 +37,10 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 /// Pixels along each side of the image, unless a shader's cost calls for fewer.
 const SIZE: u32 = 1024;
+
+/// The devices each shader is timed on, each with its own pipelines (`PATINA_BENCH_DEVICES`
+/// overrides it).
+const DEVICES: usize = 5;
 
 /// The plane's scale in the scenes: the `plane` mesh is 2 wide, and at distance 2 with a 90° field
 /// of view the view is 4 wide, so the plane reaches past the view's edges and every pixel is
@@ -195,7 +202,7 @@ fn bench(c: &mut Criterion) {
         .flatten()
         .flat_map(f32::to_le_bytes)
         .collect();
-    let handwritten = |entry: &str, size: u32| {
+    let handwritten = |gpu: &Gpu, entry: &str, size: u32| {
         let target = Target { width: size, height: size, format: TargetFormat::Rgba32Float, clear: [0.0; 4] };
         let draw = Draw {
             module: &module,
@@ -211,8 +218,8 @@ fn bench(c: &mut Criterion) {
         };
         std::hint::black_box(gpu.render(&target, &[draw]).expect("the hand-written module renders"))
     };
-    let generated = |prepared: &Prepared| {
-        std::hint::black_box(render::render(prepared, Backend::Gpu, Some(&gpu)).expect("the scene renders"))
+    let generated = |gpu: &Gpu, prepared: &Prepared| {
+        std::hint::black_box(render::render(prepared, Backend::Gpu, Some(gpu)).expect("the scene renders"))
     };
     let point_lights: String = LIGHTS
         .iter()
@@ -264,25 +271,27 @@ fn bench(c: &mut Criterion) {
     // Pipeline creation and the driver's compile, once each, outside the measurement; the images
     // of these first renders are the ones compared.
     for (size, scene) in &baselines {
-        handwritten("baseline", *size);
-        generated(scene);
+        handwritten(&gpu, "baseline", *size);
+        generated(&gpu, scene);
     }
     let agreement: Vec<String> = shaders
         .iter()
         .flat_map(|s| {
-            let hand = handwritten(s.entry, s.size);
+            let hand = handwritten(&gpu, s.entry, s.size);
             [
-                check_agreement(&format!("{} (exact)", s.label), &generated(&s.exact), &hand),
-                check_agreement(&format!("{} (fast)", s.label), &generated(&s.fast), &hand),
+                check_agreement(&format!("{} (exact)", s.label), &generated(&gpu, &s.exact), &hand),
+                check_agreement(&format!("{} (fast)", s.label), &generated(&gpu, &s.fast), &hand),
             ]
         })
         .collect();
     let mut group = c.benchmark_group("handwritten");
     group.sample_size(10);
     for s in &shaders {
-        group.bench_function(format!("generated (fast) {}", s.label), |b| b.iter(|| generated(&s.fast)));
         group
-            .bench_function(format!("hand-written {}", s.label), |b| b.iter(|| handwritten(s.entry, s.size)));
+            .bench_function(format!("generated (fast) {}", s.label), |b| b.iter(|| generated(&gpu, &s.fast)));
+        group.bench_function(format!("hand-written {}", s.label), |b| {
+            b.iter(|| handwritten(&gpu, s.entry, s.size))
+        });
     }
     group.finish();
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
@@ -295,45 +304,69 @@ fn bench(c: &mut Criterion) {
         gpu.adapter_description()
     );
     println!(
-        "| shader | pixels | exact ms | fast ms | hand-written ms | exact / hand-written | fast / hand-written |"
+        "| shader | pixels | exact ms | fast ms | hand-written ms | exact / hand-written (median; each device) | fast / hand-written (median; each device) |"
     );
     println!("|---|---|---|---|---|---|---|");
+    let devices =
+        std::env::var("PATINA_BENCH_DEVICES").ok().and_then(|v| v.parse().ok()).unwrap_or(DEVICES).max(1);
     let mut trivial = Vec::new();
     for s in &shaders {
         let base = &baselines.iter().find(|b| b.0 == s.size).unwrap().1;
-        let [generated_base, hand_base, exact_time, fast_time, hand_time] = interleaved_medians(
-            [
-                &mut || drop(generated(base)),
-                &mut || drop(handwritten("baseline", s.size)),
-                &mut || drop(generated(&s.exact)),
-                &mut || drop(generated(&s.fast)),
-                &mut || drop(handwritten(s.entry, s.size)),
-            ],
-            31,
-        );
-        let exact_shading = exact_time.saturating_sub(generated_base);
-        let fast_shading = fast_time.saturating_sub(generated_base);
-        let hand_shading = hand_time.saturating_sub(hand_base);
-        let ratio = |d: Duration| d.as_secs_f64() / hand_shading.as_secs_f64().max(1e-9);
+        // One set of timings per device: each device compiles its own pipelines, and the same
+        // WGSL compiled twice by lavapipe runs up to ~15% apart (code placement), far more than
+        // the load's drift within a set. The figures are medians over the devices.
+        let sets: Vec<[Duration; 5]> = (0..devices)
+            .map(|_| {
+                let gpu = Gpu::new().expect("a second device on the adapter that gave the first");
+                let mut renders: [&mut dyn FnMut(); 5] = [
+                    &mut || drop(generated(&gpu, base)),
+                    &mut || drop(handwritten(&gpu, "baseline", s.size)),
+                    &mut || drop(generated(&gpu, &s.exact)),
+                    &mut || drop(generated(&gpu, &s.fast)),
+                    &mut || drop(handwritten(&gpu, s.entry, s.size)),
+                ];
+                // Pipeline creation, outside the timings.
+                renders.iter_mut().for_each(|render| render());
+                let [generated_base, hand_base, exact, fast, hand] = interleaved_medians(renders, 31);
+                [
+                    generated_base,
+                    hand_base,
+                    exact.saturating_sub(generated_base),
+                    fast.saturating_sub(generated_base),
+                    hand.saturating_sub(hand_base),
+                ]
+            })
+            .collect();
+        let ratio = |set: &[Duration; 5], i: usize| set[i].as_secs_f64() / set[4].as_secs_f64().max(1e-9);
+        let exact_ratios: Vec<f64> = sets.iter().map(|set| ratio(set, 2)).collect();
+        let fast_ratios: Vec<f64> = sets.iter().map(|set| ratio(set, 3)).collect();
+        let time = |i: usize| ms(median_of(sets.iter().map(|set| set[i]).collect()));
         println!(
-            "| {} | {} × {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+            "| {} | {} × {} | {:.2} | {:.2} | {:.2} | {} | {} |",
             s.label,
             s.size,
             s.size,
-            ms(exact_shading),
-            ms(fast_shading),
-            ms(hand_shading),
-            ratio(exact_shading),
-            ratio(fast_shading)
+            time(2),
+            time(3),
+            time(4),
+            ratios(&exact_ratios),
+            ratios(&fast_ratios)
         );
-        trivial.push(format!(
-            "{}: generated {:.2} ms, hand-written {:.2} ms",
-            s.label,
-            ms(generated_base),
-            ms(hand_base)
-        ));
+        trivial.push(format!("{}: generated {:.2} ms, hand-written {:.2} ms", s.label, time(0), time(1)));
     }
     println!("\n(renders with the trivial shader, measured alongside each: {})", trivial.join("; "));
+}
+
+/// The median of `ratios` in bold, then each of them.
+fn ratios(ratios: &[f64]) -> String {
+    let each: Vec<String> = ratios.iter().map(|r| format!("{r:.2}")).collect();
+    format!("**{:.2}**; {}", median_of(ratios.to_vec()), each.join(", "))
+}
+
+/// The median of `values` (the upper one of an even count).
+fn median_of<T: PartialOrd + Copy>(mut values: Vec<T>) -> T {
+    values.sort_by(|a, b| a.partial_cmp(b).expect("no NaN"));
+    values[values.len() / 2]
 }
 
 /// The median wall time of each of `fs` over `runs` rounds that call each once in turn: a change

@@ -315,7 +315,7 @@ fn bench(c: &mut Criterion) {
         // One set of timings per device: each device compiles its own pipelines, and the same
         // WGSL compiled twice by lavapipe runs up to ~15% apart (code placement), far more than
         // the load's drift within a set. The figures are medians over the devices.
-        let sets: Vec<[Duration; 5]> = (0..devices)
+        let sets: Vec<Timings> = (0..devices)
             .map(|_| {
                 let gpu = Gpu::new().expect("a second device on the adapter that gave the first");
                 let mut renders: [&mut dyn FnMut(); 5] = [
@@ -328,33 +328,47 @@ fn bench(c: &mut Criterion) {
                 // Pipeline creation, outside the timings.
                 renders.iter_mut().for_each(|render| render());
                 let [generated_base, hand_base, exact, fast, hand] = interleaved_medians(renders, 31);
-                [
+                Timings {
                     generated_base,
                     hand_base,
-                    exact.saturating_sub(generated_base),
-                    fast.saturating_sub(generated_base),
-                    hand.saturating_sub(hand_base),
-                ]
+                    exact: exact.saturating_sub(generated_base),
+                    fast: fast.saturating_sub(generated_base),
+                    hand: hand.saturating_sub(hand_base),
+                }
             })
             .collect();
-        let ratio = |set: &[Duration; 5], i: usize| set[i].as_secs_f64() / set[4].as_secs_f64().max(1e-9);
-        let exact_ratios: Vec<f64> = sets.iter().map(|set| ratio(set, 2)).collect();
-        let fast_ratios: Vec<f64> = sets.iter().map(|set| ratio(set, 3)).collect();
-        let time = |i: usize| ms(median_of(sets.iter().map(|set| set[i]).collect()));
+        let ratios_of = |of: fn(&Timings) -> Duration| -> Vec<f64> {
+            sets.iter().map(|t| of(t).as_secs_f64() / t.hand.as_secs_f64().max(1e-9)).collect()
+        };
+        let exact_ratios = ratios_of(|t| t.exact);
+        let fast_ratios = ratios_of(|t| t.fast);
+        let time = |of: fn(&Timings) -> Duration| ms(median_of(sets.iter().map(of).collect()));
         println!(
             "| {} | {} × {} | {:.2} | {:.2} | {:.2} | {} | {} |",
             s.label,
             s.size,
             s.size,
-            time(2),
-            time(3),
-            time(4),
+            time(|t| t.exact),
+            time(|t| t.fast),
+            time(|t| t.hand),
             ratios(&exact_ratios),
             ratios(&fast_ratios)
         );
-        trivial.push(format!("{}: generated {:.2} ms, hand-written {:.2} ms", s.label, time(0), time(1)));
+        let (generated_base, hand_base) = (time(|t| t.generated_base), time(|t| t.hand_base));
+        trivial
+            .push(format!("{}: generated {generated_base:.2} ms, hand-written {hand_base:.2} ms", s.label));
     }
     println!("\n(renders with the trivial shader, measured alongside each: {})", trivial.join("; "));
+}
+
+/// One device's medians: the two trivial renders, and the shading times (each render less its
+/// side's trivial one).
+struct Timings {
+    generated_base: Duration,
+    hand_base: Duration,
+    exact: Duration,
+    fast: Duration,
+    hand: Duration,
 }
 
 /// The median of `ratios` in bold, then each of them.
@@ -381,10 +395,7 @@ fn interleaved_medians<const N: usize>(mut fs: [&mut dyn FnMut(); N], runs: usiz
             t.push(start.elapsed());
         }
     }
-    std::array::from_fn(|i| {
-        times[i].sort();
-        times[i][runs / 2]
-    })
+    std::array::from_fn(|i| median_of(std::mem::take(&mut times[i])))
 }
 
 criterion_group!(benches, bench);

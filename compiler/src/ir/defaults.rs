@@ -6,7 +6,7 @@
 
 use rustc_hash::FxHashSet;
 
-use super::{ExprId, ExprKind, LocalId, LocalKind, Place, Shader, Stmt};
+use super::{ExprId, LocalId, LocalKind, Place, Shader, Stmt};
 
 impl Shader {
     /// The locals the parameters' default expressions read.
@@ -14,7 +14,7 @@ impl Shader {
         let mut out = FxHashSet::default();
         for &p in &self.params {
             if let LocalKind::Param { default: Some(d), .. } = self.local(p).kind {
-                self.expr_reads(d, &mut out);
+                self.add_reads(d, &mut out);
             }
         }
         out
@@ -25,7 +25,7 @@ impl Shader {
     /// in the body, where running them again computes the same temporaries.
     pub fn default_prelude(&self, value: ExprId) -> Vec<Stmt> {
         let mut needed = FxHashSet::default();
-        self.expr_reads(value, &mut needed);
+        self.add_reads(value, &mut needed);
         let mut taken = vec![false; self.body.len()];
         // A statement feeds an earlier one only through locals it stores: walk backwards.
         for (i, stmt) in self.body.iter().enumerate().rev() {
@@ -39,33 +39,24 @@ impl Shader {
         self.body.iter().zip(taken).filter(|(_, t)| *t).map(|(s, _)| s.clone()).collect()
     }
 
-    /// Adds the locals expression `id` reads to `out`.
-    fn expr_reads(&self, id: ExprId, out: &mut FxHashSet<LocalId>) {
-        let kind = &self.expr(id).kind;
-        if let ExprKind::Local(l) = kind {
-            out.insert(*l);
-        }
-        kind.for_each_operand(|a| self.expr_reads(a, out));
-    }
-
     /// Adds the locals `stmt` (with the blocks in it) stores to `stored` and those it reads to
     /// `read`.
     fn stmt_locals(&self, stmt: &Stmt, stored: &mut FxHashSet<LocalId>, read: &mut FxHashSet<LocalId>) {
         match stmt {
-            Stmt::Eval(e) => self.expr_reads(*e, read),
+            Stmt::Eval(e) => self.add_reads(*e, read),
             Stmt::Store { place, value, .. } => {
                 stored.extend(place.root_local());
                 let mut p = place;
                 while let Place::Index(inner, index) = p {
-                    self.expr_reads(*index, read);
+                    self.add_reads(*index, read);
                     p = inner;
                 }
-                self.expr_reads(*value, read);
+                self.add_reads(*value, read);
             }
-            Stmt::If { cond, .. } => self.expr_reads(*cond, read),
-            Stmt::Loop { cond, .. } => cond.iter().for_each(|c| self.expr_reads(*c, read)),
+            Stmt::If { cond, .. } => self.add_reads(*cond, read),
+            Stmt::Loop { cond, .. } => cond.iter().for_each(|c| self.add_reads(*c, read)),
             Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => {
-                args.iter().for_each(|a| self.expr_reads(*a, read))
+                args.iter().for_each(|a| self.add_reads(*a, read))
             }
             Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. } | Stmt::Lights { .. } => {
             }

@@ -398,6 +398,15 @@ impl Shader {
         &self.locals[id.0 as usize]
     }
 
+    /// Adds the locals expression `id` reads (through any of its operands) to `out`.
+    pub fn add_reads(&self, id: ExprId, out: &mut rustc_hash::FxHashSet<LocalId>) {
+        let kind = &self.expr(id).kind;
+        if let ExprKind::Local(l) = kind {
+            out.insert(*l);
+        }
+        kind.for_each_operand(|a| self.add_reads(a, out));
+    }
+
     /// The type of what `place` stores into: its variable's, narrowed by each index.
     pub fn place_type(&self, place: &Place) -> Type {
         match place {

@@ -26,29 +26,18 @@ pub(crate) fn arguments(shader: &Shader, body: &[Stmt]) -> usize {
     for stmt in body {
         let Stmt::Store { place: Place::Local(l), value, .. } = stmt else { break };
         let local = shader.local(*l);
+        let mut reads = FxHashSet::default();
+        shader.add_reads(*value, &mut reads);
         if local.function.is_none()
             || local.ty.array.is_some()
             || matches!(local.ty.base, Base::String | Base::Texref)
-            || reads_any(shader, *value, &stored)
+            || stored.iter().any(|l| reads.contains(l))
         {
             break;
         }
         stored.push(*l);
     }
     stored.len()
-}
-
-/// Whether expression `id` reads any of `locals`.
-fn reads_any(shader: &Shader, id: ExprId, locals: &[LocalId]) -> bool {
-    let e = shader.expr(id);
-    if let ExprKind::Local(l) = e.kind
-        && locals.contains(&l)
-    {
-        return true;
-    }
-    let mut found = false;
-    e.kind.for_each_operand(|a| found = found || reads_any(shader, a, locals));
-    found
 }
 
 /// The local an inlined call's `body` gives back: the one of `values` its last statement before

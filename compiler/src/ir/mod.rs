@@ -360,6 +360,46 @@ impl Stmt {
             Stmt::Eval(_) | Stmt::Store { .. } | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
         }
     }
+
+    /// Calls `f` with each expression the statement evaluates itself, its nested blocks aside (a
+    /// store's value and the indices of its place, a condition, a construct's arguments).
+    pub fn for_each_root(&self, mut f: impl FnMut(ExprId)) {
+        match self {
+            Stmt::Eval(e) => f(*e),
+            Stmt::Store { place, value, .. } => {
+                f(*value);
+                let mut at = place;
+                while let Place::Index(inner, index) = at {
+                    f(*index);
+                    at = inner;
+                }
+            }
+            Stmt::If { cond, .. } => f(*cond),
+            Stmt::Loop { cond, .. } => cond.iter().copied().for_each(f),
+            Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => args.iter().copied().for_each(f),
+            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. } | Stmt::Lights { .. } => {
+            }
+        }
+    }
+
+    /// [`Stmt::for_each_block`] for rewriting: `f` may change each nested block.
+    pub fn for_each_block_mut(&mut self, mut f: impl FnMut(&mut Block)) {
+        match self {
+            Stmt::If { then, otherwise, .. } => {
+                f(then);
+                f(otherwise);
+            }
+            Stmt::Loop { body, step, .. } => {
+                f(body);
+                f(step);
+            }
+            Stmt::Inline { body, .. }
+            | Stmt::Illuminance { body, .. }
+            | Stmt::Emit { body, .. }
+            | Stmt::Lights { body, .. } => f(body),
+            Stmt::Eval(_) | Stmt::Store { .. } | Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return => {}
+        }
+    }
 }
 
 /// A checked shader, with every function it calls inlined.

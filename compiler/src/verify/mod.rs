@@ -435,7 +435,7 @@ impl Verifier<'_> {
         ) {
             for stmt in block {
                 let mut roots = Vec::new();
-                statement_roots(stmt, &mut roots);
+                stmt.for_each_root(|e| roots.push(e));
                 for e in roots {
                     if !ok(e) {
                         bad.push(format!("a statement reads e{}, past the expressions", e.0));
@@ -1002,7 +1002,7 @@ impl Verifier<'_> {
         let mut stack = Vec::new();
         fn roots(block: &Block, stack: &mut Vec<ExprId>) {
             for stmt in block {
-                statement_roots(stmt, stack);
+                stmt.for_each_root(|e| stack.push(e));
                 if !matches!(stmt, Stmt::Illuminance { .. } | Stmt::Lights { .. }) {
                     stmt.for_each_block(|b| roots(b, stack));
                 }
@@ -1100,7 +1100,7 @@ impl Verifier<'_> {
         let mut lights = false;
         fn walk(block: &Block, stack: &mut Vec<ExprId>, stores: &mut Vec<Place>, lights: &mut bool) {
             for stmt in block {
-                statement_roots(stmt, stack);
+                stmt.for_each_root(|e| stack.push(e));
                 match stmt {
                     Stmt::Store { place, .. } => stores.push(place.clone()),
                     Stmt::Illuminance { .. } | Stmt::Emit { .. } => *lights = true,
@@ -1152,26 +1152,6 @@ fn root_of(place: &Place) -> &Place {
     match place {
         Place::Index(inner, _) => root_of(inner),
         other => other,
-    }
-}
-
-/// The expressions a statement reads itself (not those of the statements nested in it): its
-/// value, condition or arguments, and the indices of the place it stores into.
-fn statement_roots(stmt: &Stmt, out: &mut Vec<ExprId>) {
-    match stmt {
-        Stmt::Eval(e) => out.push(*e),
-        Stmt::Store { place, value, .. } => {
-            out.push(*value);
-            let mut at = place;
-            while let Place::Index(inner, index) = at {
-                out.push(*index);
-                at = inner;
-            }
-        }
-        Stmt::If { cond, .. } => out.push(*cond),
-        Stmt::Loop { cond, .. } => out.extend(cond.iter().copied()),
-        Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => out.extend(args.iter().copied()),
-        Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. } | Stmt::Lights { .. } => {}
     }
 }
 

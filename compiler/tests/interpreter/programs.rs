@@ -116,6 +116,50 @@ fn light_sums_follow_the_ri_definitions() {
 }
 
 #[test]
+fn a_normalization_shared_by_diffuse_and_specular_gives_the_bits_of_each_alone() {
+    // Both sums normalize each light's L: in one shader that is computed once per light
+    // (opt::lights), alone in each sum it is not. The f32 results must not change by a bit,
+    // for L at ordinary lengths, tiny and huge ones (lighting_normalize's rescaled branch), and 0.
+    let binding = Binding { lights: vec![LightBinding::default(); 3], strings: vec![] };
+    let both = "surface t() { Ci = diffuse(N); Oi = specular(N, vector(0, 0.6, 0.8), 0.1); }";
+    let diffuse = "surface t() { Ci = diffuse(N); }";
+    let specular = "surface t() { Oi = specular(N, vector(0, 0.6, 0.8), 0.1); }";
+    let scales = [1.0, 3e-21, 7e19, 0.0, 0.37];
+    let count = 64;
+    let mut columns: Vec<(String, Vec<f64>)> = Vec::new();
+    for k in 0..3 {
+        let l: Vec<f64> = (0..count * 3)
+            .map(|i| {
+                let v = ((i * 7 + k * 13) % 11) as f64 - 5.0;
+                v * scales[(i / 3 + k) % scales.len()]
+            })
+            .collect();
+        let cl: Vec<f64> = (0..count * 3).map(|i| 0.25 + ((i + k) % 5) as f64 * 0.5).collect();
+        columns.push((format!("L[{k}]"), l));
+        columns.push((format!("Cl[{k}]"), cl));
+    }
+    let n: Vec<f64> = (0..count)
+        .flat_map(|i| {
+            let a = i as f64 * 0.37;
+            [a.sin() * 0.6, 0.48, a.cos() * 0.64]
+        })
+        .collect();
+    columns.push(("N".into(), n));
+    let inputs: Vec<(&str, &[f64])> = columns.iter().map(|(name, c)| (name.as_str(), c.as_slice())).collect();
+    let run = |src: &str, outputs: &[&str]| {
+        let program = compile(src, &binding);
+        Evaluator::<f32>::new(&program).eval_points(count, &inputs, outputs).unwrap()
+    };
+    let shared = run(both, &["Ci", "Oi"]);
+    let alone = [run(diffuse, &["Ci"]).remove(0), run(specular, &["Oi"]).remove(0)];
+    for (which, (a, b)) in ["diffuse", "specular"].iter().zip(shared.iter().zip(&alone)) {
+        let differ = a.iter().zip(b).filter(|(x, y)| x.to_bits() != y.to_bits()).count();
+        assert_eq!(differ, 0, "{which}: {differ} of {} values differ", a.len());
+        assert!(a.iter().any(|x| *x != 0.0), "{which} lit something");
+    }
+}
+
+#[test]
 fn stanford_perlight_values_are_integrated_over_the_lights() {
     let src = "surface shader float4 t(vertex float4 uv) {
         perlight float3 contribution = rgb(Cl) * max(dot(L, {0, 0, 1}), 0);

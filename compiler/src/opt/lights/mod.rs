@@ -16,9 +16,14 @@
 //!   of a per-light value, a per-light condition) becomes a loop over every bound light of that
 //!   statement.
 //!
+//! - A call that light loops repeat with the same per-light arguments (`normalize(L)` in both
+//!   `diffuse` and `specular`) is computed once per light ([`shared`]).
+//!
 //! The result is a copy of the shader for one binding: a backend compiles it in place of the
 //! prepared shader it was given. Expression ids keep their meaning (expressions are only added,
 //! and `ambient`/`integrate` calls turned into sums in place).
+
+mod shared;
 
 use crate::backend::binding::LightBinding;
 use crate::ir::builtin::BuiltinId;
@@ -37,6 +42,7 @@ pub fn unroll(shader: &Shader, lights: &[LightBinding], strings: &[(String, Stri
     let mut unroll = Unroll { shader: &mut out, lights, strings };
     let body = unroll.block(body, false);
     out.body = body;
+    shared::share_calls(&mut out);
     crate::verify::assert_valid(&out, crate::verify::Pass::Lights);
     out
 }
@@ -292,5 +298,96 @@ mod tests {
         let src = "light l() { solar() { Cl = 1; } }";
         let shader = unrolled(src, &[]);
         assert!(!shader.body.iter().any(|s| matches!(s, Stmt::Emit { .. } | Stmt::If { .. })));
+    }
+
+    /// The inlined calls of `function` in `block`, at any depth.
+    fn calls(block: &[Stmt], function: &str) -> usize {
+        block
+            .iter()
+            .map(|s| {
+                let mut n = usize::from(matches!(s, Stmt::Inline { function: f, .. } if f == function));
+                s.for_each_block(|b| n += calls(b, function));
+                n
+            })
+            .sum()
+    }
+
+    /// The per-light variables `opt::lights` added to hold shared calls.
+    fn shared(shader: &Shader) -> Vec<&str> {
+        shader.locals.iter().filter(|l| l.name.ends_with(" per light")).map(|l| l.name.as_str()).collect()
+    }
+
+    #[test]
+    fn a_call_that_two_light_sums_repeat_is_computed_once_per_light() {
+        // diffuse normalizes L for each light, specular too (and then L + V): the first two are
+        // one call, computed before the sums, over every light either sum visits.
+        let lights = [light(false, &["key"]), light(true, &[]), light(false, &[])];
+        let src = "surface s() {
+            normal Nf = normalize(N);
+            Ci = diffuse(Nf) + specular(Nf, -normalize(I), 0.1);
+        }";
+        let prepared = {
+            let checked = crate::check_source("test.sl", src, &MemoryLoader::default());
+            crate::opt::Prepared::new(checked.program.shaders[0].clone())
+        };
+        assert_eq!(calls(&prepared.body, "lighting_normalize"), 3);
+        let shader = unrolled(src, &lights);
+        assert_eq!(shared(&shader), ["lighting_normalize per light"]);
+        assert!(shader.locals.last().unwrap().rate.perlight);
+        assert_eq!(calls(&shader.body, "lighting_normalize"), 2, "one shared, H's left in specular");
+        let mut found = Vec::new();
+        loops(&shader.body, &mut found);
+        assert_eq!(found, vec![vec![0, 2], vec![0, 2], vec![0, 2]], "the shared call's loop comes first");
+        let first = shader.body.iter().position(|s| matches!(s, Stmt::Lights { .. })).unwrap();
+        let sums = shader.body.iter().position(|s| calls(std::slice::from_ref(s), "rm_diffuse") > 0).unwrap();
+        assert!(first < sums, "the shared loop runs before the sums");
+        // Only two lights' worth of sums in one: nothing repeats, nothing is shared.
+        let src = "surface s() { Ci = diffuse(normalize(N)); }";
+        assert!(shared(&unrolled(src, &lights)).is_empty());
+    }
+
+    #[test]
+    fn calls_that_depend_on_more_than_the_light_are_not_shared() {
+        let lights = [light(false, &[]), light(false, &[])];
+        // An argument read from a variable that changes between the loops.
+        let src = "surface s() {
+            vector d = vector(1, 0, 0);
+            color c = 0;
+            illuminance(P) { c += Cl * (normalize(L + d) . N); }
+            d = vector(0, 1, 0);
+            illuminance(P) { c += Cl * (normalize(L + d) . N); }
+            Ci = c;
+        }";
+        assert!(shared(&unrolled(src, &lights)).is_empty());
+        // A predefined variable the shader stores.
+        let src = "float lit(vector l) { return l . vector(Ci); }
+        surface s() {
+            Ci = 1;
+            float a = 0;
+            illuminance(P) { a += lit(L); }
+            Ci = 0.5;
+            illuminance(P) { a += lit(L); }
+            Oi = a;
+        }";
+        assert!(shared(&unrolled(src, &lights)).is_empty());
+        // A call with an output parameter beside its result.
+        let src = "float halve(vector l; output float n) { n = l . l; return n / 2; }
+        surface s() {
+            float a = 0, n = 0;
+            illuminance(P) { a += halve(L, n); }
+            illuminance(P) { a += halve(L, n); }
+            Oi = a + n;
+        }";
+        assert!(shared(&unrolled(src, &lights)).is_empty());
+        // The same function of the same light in both loops is shared.
+        let src = "float len(vector l) { return sqrt(l . l); }
+        surface s() {
+            float a = 0;
+            illuminance(P) { a += len(L); }
+            Ci = a;
+            illuminance(P) { a += 2 * len(L); }
+            Oi = a;
+        }";
+        assert_eq!(shared(&unrolled(src, &lights)), ["len per light"]);
     }
 }

@@ -18,6 +18,10 @@
 //! its result. The operations are the call's own, in its order, so each value has the same bits
 //! as before on every backend, and running it for a light that a call would have skipped (under a
 //! condition or a category) computes a value nothing reads.
+//!
+//! Calls are found inside the light loops made of `illuminance`. A Stanford shader's per-light
+//! statements get a light loop each, inside the calls they make (`perlight float a = f(L)` is
+//! `f`'s body with a loop around each of its statements), so its calls are not found here.
 
 use rustc_hash::{FxHashMap, FxHashSet};
 

@@ -6,7 +6,7 @@
 
 use rustc_hash::FxHashSet;
 
-use super::{ExprId, LocalId, LocalKind, Place, Shader, Stmt};
+use super::{ExprId, LocalId, LocalKind, Shader, Stmt};
 
 impl Shader {
     /// The locals the parameters' default expressions read.
@@ -42,25 +42,10 @@ impl Shader {
     /// Adds the locals `stmt` (with the blocks in it) stores to `stored` and those it reads to
     /// `read`.
     fn stmt_locals(&self, stmt: &Stmt, stored: &mut FxHashSet<LocalId>, read: &mut FxHashSet<LocalId>) {
-        match stmt {
-            Stmt::Eval(e) => self.add_reads(*e, read),
-            Stmt::Store { place, value, .. } => {
-                stored.extend(place.root_local());
-                let mut p = place;
-                while let Place::Index(inner, index) = p {
-                    self.add_reads(*index, read);
-                    p = inner;
-                }
-                self.add_reads(*value, read);
-            }
-            Stmt::If { cond, .. } => self.add_reads(*cond, read),
-            Stmt::Loop { cond, .. } => cond.iter().for_each(|c| self.add_reads(*c, read)),
-            Stmt::Illuminance { args, .. } | Stmt::Emit { args, .. } => {
-                args.iter().for_each(|a| self.add_reads(*a, read))
-            }
-            Stmt::Break(_) | Stmt::Continue(_) | Stmt::Return | Stmt::Inline { .. } | Stmt::Lights { .. } => {
-            }
+        if let Stmt::Store { place, .. } = stmt {
+            stored.extend(place.root_local());
         }
+        stmt.for_each_root(|e| self.add_reads(e, read));
         stmt.for_each_block(|block| block.iter().for_each(|s| self.stmt_locals(s, stored, read)));
     }
 }

@@ -258,6 +258,15 @@ impl Place {
             Place::Index(inner, _) => inner.root_local(),
         }
     }
+
+    /// The predefined variable this place is (a part of), if it is one.
+    pub fn root_global(&self) -> Option<&'static Global> {
+        match self {
+            Place::Local(_) => None,
+            Place::Global(g) => Some(g),
+            Place::Index(inner, _) => inner.root_global(),
+        }
+    }
 }
 
 /// A sequence of statements.

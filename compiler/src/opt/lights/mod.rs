@@ -15,7 +15,6 @@
 //! - A Stanford statement that computes a per-light value outside a light loop (a store into or
 //!   of a per-light value, a per-light condition) becomes a loop over every bound light of that
 //!   statement.
-//!
 //! - A call that light loops repeat with the same per-light arguments (`normalize(L)` in both
 //!   `diffuse` and `specular`) is computed once per light ([`shared`]).
 //!

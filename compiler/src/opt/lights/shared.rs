@@ -25,7 +25,6 @@
 
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use crate::ir::global::Global;
 use crate::ir::types::Rate;
 use crate::ir::{Block, ExprId, ExprKind, Local, LocalId, LocalKind, Place, Shader, Stmt};
 use crate::opt::build::Builder;
@@ -122,16 +121,12 @@ struct Facts {
 
 impl Facts {
     fn of(shader: &Shader) -> Facts {
-        let mut facts = Facts {
-            stored_globals: FxHashSet::default(),
-            stores: crate::ir::stores::stores(shader).iter().map(|s| s.count).collect(),
-            reads: vec![0; shader.locals.len()],
-        };
-        let mut reads = std::mem::take(&mut facts.reads);
+        let mut reads = vec![0; shader.locals.len()];
         count_reads(shader, &shader.body, &mut reads);
-        facts.reads = reads;
-        stored_globals(&shader.body, &mut facts.stored_globals);
-        facts
+        let mut stored = FxHashSet::default();
+        stored_globals(&shader.body, &mut stored);
+        let stores = crate::ir::stores::stores(shader).iter().map(|s| s.count).collect();
+        Facts { stored_globals: stored, stores, reads }
     }
 
     /// Adds the self-contained calls inside light loops within `stmt` (itself one when it is) to
@@ -246,16 +241,9 @@ fn count_reads(shader: &Shader, block: &Block, reads: &mut [u32]) {
 
 /// Adds the names of the predefined variables `block` stores into to `out`.
 fn stored_globals(block: &Block, out: &mut FxHashSet<&'static str>) {
-    fn root(p: &Place) -> Option<&'static Global> {
-        match p {
-            Place::Global(g) => Some(g),
-            Place::Local(_) => None,
-            Place::Index(inner, _) => root(inner),
-        }
-    }
     for stmt in block {
         if let Stmt::Store { place, .. } = stmt
-            && let Some(g) = root(place)
+            && let Some(g) = place.root_global()
         {
             out.insert(g.name);
         }

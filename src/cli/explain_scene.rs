@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use patina_compiler::bind::Decision;
 use patina_compiler::source::{SourceMap, Span};
 use patina_runtime::render::{self, Options, Prepared, SurfaceProgram};
-use patina_runtime::scene::Scene;
+use patina_runtime::scene::{Scene, ShaderRef};
 
 pub fn run(path: &std::path::Path) -> Result<ExitCode, String> {
     let scene = Scene::load(path).map_err(|e| e.to_string())?;
@@ -35,26 +35,26 @@ fn report(scene: &Scene, bound: &Prepared, dynamic: &Prepared) -> String {
         let decisions = &light.loaded.decisions;
         if !decisions.is_empty() {
             let _ = writeln!(out, "\nlight {k} ({})", light.loaded.shader.name);
-            decisions_text(&mut out, decisions, &light.loaded.sources);
+            decisions_text(&mut out, decisions, &light.loaded.sources, &scene.lights[k].shader);
         }
     }
-    for (i, (b, d)) in bound.objects.iter().zip(&dynamic.objects).enumerate() {
+    for (i, ((b, d), object)) in bound.objects.iter().zip(&dynamic.objects).zip(&scene.objects).enumerate() {
         let _ = writeln!(out, "\nobject {i}: surface `{}`", b.surface.loaded.shader.name);
-        decisions_text(&mut out, &b.surface.loaded.decisions, &b.surface.loaded.sources);
-        if let Some(d) = &b.surface.displacement {
+        decisions_text(&mut out, &b.surface.loaded.decisions, &b.surface.loaded.sources, &object.surface);
+        if let (Some(d), Some(set)) = (&b.surface.displacement, &object.displacement) {
             let _ = writeln!(out, "  displacement `{}`:", d.loaded.shader.name);
-            decisions_text(&mut out, &d.loaded.decisions, &d.loaded.sources);
+            decisions_text(&mut out, &d.loaded.decisions, &d.loaded.sources, set);
         }
-        if let Some(a) = &b.surface.atmosphere {
+        if let (Some(a), Some(set)) = (&b.surface.atmosphere, &object.atmosphere) {
             let _ = writeln!(out, "  atmosphere `{}`:", a.loaded.shader.name);
-            decisions_text(&mut out, &a.loaded.decisions, &a.loaded.sources);
+            decisions_text(&mut out, &a.loaded.decisions, &a.loaded.sources, set);
         }
         sizes(&mut out, &b.surface, &d.surface);
         interface(&mut out, &b.surface, &d.surface);
     }
-    if let Some(imager) = &bound.imager {
+    if let (Some(imager), Some(set)) = (&bound.imager, &scene.imager) {
         let _ = writeln!(out, "\nimager `{}`", imager.loaded.shader.name);
-        decisions_text(&mut out, &imager.loaded.decisions, &imager.loaded.sources);
+        decisions_text(&mut out, &imager.loaded.decisions, &imager.loaded.sources, set);
     }
     out
 }
@@ -66,7 +66,9 @@ fn place(sources: &SourceMap, span: Span) -> String {
     format!("{}:{line}", file.name)
 }
 
-fn decisions_text(out: &mut String, decisions: &[Decision], sources: &SourceMap) {
+/// What binding decided for one shader; `set` is the scene's entry for it, which tells the values
+/// it sets from the defaults it leaves.
+fn decisions_text(out: &mut String, decisions: &[Decision], sources: &SourceMap, set: &ShaderRef) {
     if decisions.is_empty() {
         let _ = writeln!(out, "  nothing fixed: every parameter stays in the uniform block");
         return;
@@ -75,7 +77,8 @@ fn decisions_text(out: &mut String, decisions: &[Decision], sources: &SourceMap)
         let _ = match d {
             Decision::Folded { name, value } => {
                 let v: Vec<String> = value.iter().map(|x| format!("{x}")).collect();
-                writeln!(out, "  folded     `{name}` = {}", v.join(", "))
+                let default = if set.params.contains_key(name) { "" } else { " (its default)" };
+                writeln!(out, "  folded     `{name}` = {}{default}", v.join(", "))
             }
             Decision::Branch { condition, taken, because } => writeln!(
                 out,

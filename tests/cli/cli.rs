@@ -329,10 +329,10 @@ fn explain_of_a_scene_says_what_binding_left_out_and_why() {
     let dir = scratch("flags.sl", b"").parent().unwrap().to_path_buf();
     std::fs::write(
         dir.join("flags.sl"),
-        "surface flags(float use_tex = 0; string map = \"checker:4\"; float Kd = 0.8) {\n\
+        "surface flags(float use_tex = 0; string map = \"checker:4\"; float Kd = 0.8; float gain = 2) {\n\
            color c = Cs;\n\
            if (use_tex > 0.5) { c *= color texture(map, s, t); }\n\
-           Ci = c * Kd;\n\
+           Ci = c * Kd * gain;\n\
            Oi = 1;\n\
          }\n",
     )
@@ -347,7 +347,8 @@ fn explain_of_a_scene_says_what_binding_left_out_and_why() {
     let out = patina(&["explain", scene.to_str().unwrap()]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(stdout.contains("folded     `use_tex` = 0"), "{stdout}");
+    assert!(stdout.contains("folded     `use_tex` = 0\n"), "{stdout}");
+    assert!(stdout.contains("folded     `gain` = 2 (its default)\n"), "the scene leaves gain: {stdout}");
     assert!(!stdout.contains("`Kd` ="), "Kd is animated, not folded: {stdout}");
     assert!(
         stdout.contains("flags.sl:3 is always false: the true side is gone (because of `use_tex`)"),

@@ -142,9 +142,11 @@ pub fn rebind_light(
 }
 
 /// Reads, checks and differentiates the shader a scene refers to; with `specialize`, first binds
-/// it to the parameter values the scene sets and does not animate (`patina_compiler::bind`),
-/// except those whose value depends on the camera ([`camera_dependent`]): they stay in the
-/// uniform block, so that the program serves every camera.
+/// it to the parameter values the scene sets and does not animate (`patina_compiler::bind`), and
+/// to the defaults written with literals of those it does not set
+/// ([`Shader::literal_default`](patina_compiler::ir::Shader::literal_default)), except values
+/// that depend on the camera ([`camera_dependent`]): they stay in the uniform block, so that the
+/// program serves every camera.
 pub fn load(
     shader: &ShaderRef,
     kind: ShaderKind,
@@ -196,11 +198,21 @@ pub fn load_reading(
         let ty = |name: &str| {
             shader_ir.params.iter().map(|p| shader_ir.local(*p)).find(|l| l.name == name).map(|l| l.ty)
         };
+        // A parameter the scene leaves at a default written with literals is as fixed as one it
+        // sets: the host would put that same value in the uniform block on every draw.
+        let defaults = shader_ir.params.iter().filter_map(|&p| {
+            let name = &shader_ir.local(p).name;
+            let set = shader.params.contains_key(name.as_str());
+            let value = if set { None } else { shader_ir.literal_default(p) };
+            value.map(|v| (name.to_string(), v))
+        });
         let fixed: Vec<Fixed> = params
             .iter()
+            .cloned()
+            .chain(defaults)
             .filter(|(name, _)| !shader.animate.contains(name))
             .filter(|(name, _)| !ty(name).is_some_and(camera_dependent))
-            .map(|(name, value)| Fixed { name: name.clone(), value: value.clone() })
+            .map(|(name, value)| Fixed { name, value })
             .collect();
         // The renderer reads back Ci, Oi or the result, never an output parameter; but a
         // surface may read a light's output parameters with `lightsource`, and an atmosphere a

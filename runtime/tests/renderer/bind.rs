@@ -185,6 +185,52 @@ fn animated_parameters_stay_in_the_uniform_block() {
 }
 
 #[test]
+fn parameters_left_at_a_literal_default_are_folded_as_if_set() {
+    // FLAGS's flags default to 0 and Kd to 0.8: a scene that sets nothing compiles the program
+    // of one that sets those values, so the texture and the detail branch are gone.
+    let unset = scene("", 1);
+    let set = scene("use_tex = 0, detail = 0, Kd = 0.8", 1);
+    let (u, s) = (prepared(&unset, true), prepared(&set, true));
+    let wgsl = |p: &Prepared| p.objects[0].surface.gpu.wgsl().unwrap();
+    assert_eq!(wgsl(&u), wgsl(&s));
+    assert!(u.objects[0].surface.gpu.interface.textures.is_empty());
+    let folded: Vec<&str> = u.objects[0]
+        .surface
+        .loaded
+        .decisions
+        .iter()
+        .filter_map(|d| match d {
+            patina_compiler::bind::Decision::Folded { name, .. } => Some(name.as_str()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(folded, ["use_tex", "detail", "Kd"]);
+    assert_same_pictures(&unset);
+}
+
+#[test]
+fn defaults_the_host_computes_and_animated_defaults_stay_in_the_uniform_block() {
+    let dir = std::env::temp_dir().join(format!("patina-bind-defaults-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("d.sl"),
+        "surface d(float k = sqrt(0.5); float j = 0.25; float h = 0.75)\n\
+         { Ci = color(s * k, t * j, u * h); Oi = 1; }\n",
+    )
+    .unwrap();
+    let text = "[output]\nwidth = 16\nheight = 16\n[camera]\nfrom = [0, 0, -3]\nto = [0, 0, 0]\n\
+                [[object]]\nmesh = \"sphere\"\nshader = \"d.sl\"\nanimate = [\"h\"]\n";
+    let scene = Scene::parse(text, dir.join("d.toml"), &dir).unwrap_or_else(|e| panic!("{e}"));
+    let p = prepared(&scene, true);
+    let uniforms: Vec<&str> =
+        p.objects[0].surface.gpu.interface.uniforms.iter().map(|u| u.name.as_str()).collect();
+    assert!(uniforms.contains(&"k"), "sqrt(0.5) is the host's: {uniforms:?}");
+    assert!(uniforms.contains(&"h"), "h is animated: {uniforms:?}");
+    assert!(!uniforms.contains(&"j"), "j is folded: {uniforms:?}");
+    assert_same_pictures(&scene);
+}
+
+#[test]
 fn the_cache_recompiles_nothing_for_new_animated_values() {
     let mut s = scene("detail = 1, Kd = 0.6", 1);
     s.objects[0].surface.animate = vec!["Kd".into()];

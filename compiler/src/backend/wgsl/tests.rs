@@ -39,6 +39,39 @@ fn plastic_with_lights_validates() {
     naga::front::wgsl::parse_str(&wgsl).unwrap_or_else(|e| panic!("{}\n{wgsl}", e.emit_to_string(&wgsl)));
 }
 
+/// The fragment entry hands a RenderMan light only the surface values it reads (`Ps` always:
+/// `illuminate` reads it without naming it), and takes back its `Ol` only for a surface that
+/// reads `Ol`: the module holds no copy that nothing reads.
+#[test]
+fn a_light_gets_only_the_surface_values_it_reads() {
+    let point = "light pt(point from = point \"shader\" (0, 0, 0)) { illuminate(from) Cl = 1 / (L . L); }";
+    let facing = "light facing(point from = point \"shader\" (0, 0, 0))
+        { illuminate(from) { Cl = max(0, normalize(N) . normalize(-L)); Ol = 0.5; } }";
+    let matte = "surface matte() { illuminance(P, N, PI / 2) { Ci += Cl * normalize(L) . normalize(N); } }";
+    let seen = "surface seen() { illuminance(P, N, PI / 2) { Ci += Cl * Ol; } }";
+    let privates = |surface: &str, light: &str| -> Vec<String> {
+        let p = program(surface, Some(light));
+        let module = &p.module;
+        module
+            .global_variables
+            .iter()
+            .filter(|(_, g)| g.space == naga::AddressSpace::Private)
+            .filter_map(|(_, g)| g.name.clone())
+            .collect()
+    };
+    let names = privates(matte, point);
+    assert!(names.iter().any(|n| n == "l0_Ps"), "{names:?}");
+    for unread in ["l0_P", "l0_N", "l0_Ol"] {
+        assert!(!names.iter().any(|n| n == unread), "{unread}: {names:?}");
+    }
+    assert!(!names.iter().any(|n| n.starts_with("Ol")), "{names:?}");
+    // A light that reads N gets it; a surface that reads Ol gets the light's.
+    let names = privates(seen, facing);
+    for read in ["l0_Ps", "l0_N", "l0_Ol"] {
+        assert!(names.iter().any(|n| n == read), "{read}: {names:?}");
+    }
+}
+
 /// Every example shader but the lights (which are compiled where they are bound: here every
 /// light of lights.sl is bound to each) builds a module that validates and whose WGSL re-parses.
 #[test]

@@ -224,7 +224,7 @@ pub(super) fn fragment_entry(
             let arrival = if light.stanford {
                 stanford_light(&mut t, k, function, light, &point)
             } else {
-                renderman_light(&mut t, k, function, light, &point)
+                renderman_light(&mut t, k, function, light, &point, uses.has_global("Ol"))
             };
             if let Some(arrival) = arrival {
                 surface_light_values(&mut t, k, light, arrival, point.e);
@@ -342,16 +342,24 @@ fn load_bound_global(t: &mut Translator, prefix: &str, g: &Global) -> Value {
     t.load(ptr)
 }
 
-/// Runs RenderMan-style light `k` at the surface point (`Ps` = `P`) and reads what it emitted.
+/// Runs RenderMan-style light `k` at the surface point (`Ps` = `P`) and reads what it emitted:
+/// its `Ol` only for a surface that reads it (`wants_ol`).
 fn renderman_light(
     t: &mut Translator,
     k: usize,
     function: Handle<naga::Function>,
     light: &Shader,
     point: &SurfacePoint,
+    wants_ol: bool,
 ) -> Option<Arrival> {
     let prefix = format!("l{k}_");
+    let reads = Uses::of(light, &light.body);
     for (name, value) in [("Ps", point.p), ("P", point.p), ("N", point.n)] {
+        // `illuminate` and `solar` read Ps without naming it; P and N are stored only for a light
+        // that reads them, so that the module holds no copy nothing reads.
+        if name != "Ps" && !reads.has_global(name) {
+            continue;
+        }
         if let (Some(g), Some(v)) = (crate::sema::globals::lookup(name, light.kind, light.stanford), value) {
             store_bound_global(t, &prefix, g, v);
         }
@@ -362,7 +370,8 @@ fn renderman_light(
         let g = crate::sema::globals::lookup(name, light.kind, light.stanford)?;
         Some(load_bound_global(t, &prefix, g))
     };
-    let (l, cl, ol) = (result("L")?, result("Cl")?, result("Ol"));
+    let (l, cl) = (result("L")?, result("Cl")?);
+    let ol = if wants_ol { result("Ol") } else { None };
     // The light's L runs from the light to the point.
     let toward = t.fb.add(Expression::Unary { op: naga::UnaryOperator::Negate, expr: l });
     Some(Arrival { toward, cl, ol })

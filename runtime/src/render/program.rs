@@ -200,12 +200,11 @@ pub fn load_reading(
         };
         // A parameter the scene leaves at a default written with literals is as fixed as one it
         // sets: the host would put that same value in the uniform block on every draw.
-        let defaults = shader_ir.params.iter().filter_map(|&p| {
-            let name = &shader_ir.local(p).name;
-            let set = shader.params.contains_key(name.as_str());
-            let value = if set { None } else { shader_ir.literal_default(p) };
-            value.map(|v| (name.to_string(), v))
-        });
+        let defaults = shader_ir
+            .params
+            .iter()
+            .filter(|&&p| !shader.params.contains_key(shader_ir.local(p).name.as_str()))
+            .filter_map(|&p| Some((shader_ir.local(p).name.to_string(), shader_ir.literal_default(p)?)));
         let fixed: Vec<Fixed> = params
             .iter()
             .cloned()
